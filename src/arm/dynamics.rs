@@ -1,0 +1,251 @@
+//! The arm's equations of motion as a [`Dynamics`] system.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{ArmModel, Energies};
+use crate::drive::{DriveState, MotionProfile};
+use crate::integrate::Dynamics;
+
+/// How the hub moves.
+#[derive(Debug, Clone, PartialEq)]
+pub enum HubDrive {
+    /// θ(t) prescribed; the torque that realizes it is an output. Coordinates: q.
+    Prescribed(MotionProfile),
+    /// θ integrated under a constant applied torque, N·m. Coordinates: [θ, q].
+    Free { torque_n_m: f64 },
+}
+
+/// External loads already mapped to generalized forces, held over a step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GeneralizedLoad {
+    /// Moment about the pivot, N·m.
+    pub hub_torque_n_m: f64,
+    /// Forces on the elastic coordinates.
+    pub modal: DVector<f64>,
+}
+
+impl GeneralizedLoad {
+    /// No load on an arm with `elastic_dofs` coordinates.
+    pub fn zero(elastic_dofs: usize) -> Self {
+        GeneralizedLoad {
+            hub_torque_n_m: 0.0,
+            modal: DVector::zeros(elastic_dofs),
+        }
+    }
+
+    /// Adds another load.
+    pub fn add(&mut self, other: &GeneralizedLoad) {
+        self.hub_torque_n_m += other.hub_torque_n_m;
+        self.modal += &other.modal;
+    }
+}
+
+/// The arm with its drive and load, seen by an integrator.
+pub struct ArmSystem<'a> {
+    /// The model.
+    pub arm: &'a ArmModel,
+    /// The hub drive.
+    pub drive: &'a HubDrive,
+    /// External loads.
+    pub load: &'a GeneralizedLoad,
+}
+
+impl ArmSystem<'_> {
+    /// Splits integrator coordinates into hub state and q (for a free hub the hub's
+    /// acceleration is unknown here and reported as 0).
+    pub fn split<'v>(
+        &self,
+        t: f64,
+        x: &'v DVector<f64>,
+        v: &'v DVector<f64>,
+    ) -> (DriveState, DVector<f64>, DVector<f64>) {
+        match self.drive {
+            HubDrive::Prescribed(profile) => (profile.sample(t), x.clone(), v.clone()),
+            HubDrive::Free { .. } => {
+                let n = self.arm.elastic_dofs();
+                let hub = DriveState {
+                    angle_rad: x[0],
+                    rate_rad_s: v[0],
+                    accel_rad_s2: 0.0,
+                    jerk_rad_s3: 0.0,
+                };
+                (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
+            }
+        }
+    }
+
+    /// Elastic generalized forces without the θ̈ term:
+    /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
+    fn elastic_forces(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> DVector<f64> {
+        let a = self.arm;
+        let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
+        let (s, c) = hub.angle_rad.sin_cos();
+        let stiff = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
+        let mut f = -(&a.damping * qd) - 2.0 * w * (&a.gyroscopic * qd) - stiff * q;
+        f += w * w * &a.axial_moment - g * s * &a.axial_mass - g * c * &a.transverse_mass;
+        f += &self.load.modal;
+        f
+    }
+
+    /// Hub generalized force without inertia: τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment.
+    fn hub_force(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        applied_n_m: f64,
+    ) -> f64 {
+        let a = self.arm;
+        let g = a.options.gravity_m_s2;
+        let (s, c) = hub.angle_rad.sin_cos();
+        let spin = 2.0 * hub.rate_rad_s * (&a.axial_moment + &a.spin_mass * q).dot(qd);
+        applied_n_m + self.load.hub_torque_n_m - spin + self.gravity_moment(s, c, q, g)
+    }
+
+    /// Moment of gravity about the pivot on the deformed arm, N·m.
+    fn gravity_moment(&self, s: f64, c: f64, q: &DVector<f64>, g: f64) -> f64 {
+        let a = self.arm;
+        // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
+        let foreshortening = 0.5 * c * q.dot(&(&a.gravity_stiffness * q));
+        -g * c * (a.first_moment_kg_m + a.axial_mass.dot(q))
+            + g * s * a.transverse_mass.dot(q)
+            + foreshortening
+    }
+
+    /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
+    fn pivot_inertia(&self, q: &DVector<f64>) -> f64 {
+        let a = self.arm;
+        a.pivot_inertia_kg_m2 + 2.0 * a.axial_moment.dot(q) + q.dot(&(&a.spin_mass * q))
+    }
+
+    /// S̃ = S + C q.
+    fn coupling(&self, q: &DVector<f64>) -> DVector<f64> {
+        &self.arm.coupling + &self.arm.gyroscopic * q
+    }
+
+    /// Kinetic, strain and gravity energy at (hub, q, q̇), J.
+    pub fn energies(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> Energies {
+        let a = self.arm;
+        let w = hub.rate_rad_s;
+        let kinetic_j = 0.5 * w * w * self.pivot_inertia(q)
+            + w * self.coupling(q).dot(qd)
+            + 0.5 * qd.dot(&(&a.mass * qd));
+        let (s, c) = hub.angle_rad.sin_cos();
+        let g = a.options.gravity_m_s2;
+        let gravity_j = g * s * (a.first_moment_kg_m + a.axial_mass.dot(q))
+            + g * c * a.transverse_mass.dot(q)
+            - 0.5 * s * q.dot(&(&a.gravity_stiffness * q));
+        Energies {
+            kinetic_j,
+            strain_j: 0.5 * q.dot(&(&a.stiffness * q)),
+            gravity_j,
+        }
+    }
+
+    /// Torque the drive applies to realize the hub motion, given q̈, N·m.
+    pub fn drive_torque(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+    ) -> f64 {
+        match self.drive {
+            HubDrive::Free { torque_n_m } => *torque_n_m,
+            HubDrive::Prescribed(_) => {
+                let inertia = self.pivot_inertia(q) * hub.accel_rad_s2 + self.coupling(q).dot(qdd);
+                inertia - self.hub_force(hub, q, qd, 0.0)
+            }
+        }
+    }
+}
+
+impl Dynamics for ArmSystem<'_> {
+    fn dofs(&self) -> usize {
+        match self.drive {
+            HubDrive::Prescribed(_) => self.arm.elastic_dofs(),
+            HubDrive::Free { .. } => self.arm.elastic_dofs() + 1,
+        }
+    }
+
+    fn mass_matrix(&self, _t: f64, x: &DVector<f64>, m: &mut DMatrix<f64>) {
+        let n = self.arm.elastic_dofs();
+        match self.drive {
+            HubDrive::Prescribed(_) => m.copy_from(&self.arm.mass),
+            HubDrive::Free { .. } => {
+                let q = x.rows(1, n).into_owned();
+                let s = self.coupling(&q);
+                m[(0, 0)] = self.pivot_inertia(&q);
+                m.view_mut((1, 0), (n, 1)).copy_from(&s);
+                m.view_mut((0, 1), (1, n)).copy_from(&s.transpose());
+                m.view_mut((1, 1), (n, n)).copy_from(&self.arm.mass);
+            }
+        }
+    }
+
+    fn forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
+        let (hub, q, qd) = self.split(t, x, v);
+        match self.drive {
+            HubDrive::Prescribed(_) => {
+                f.copy_from(
+                    &(self.elastic_forces(&hub, &q, &qd) - hub.accel_rad_s2 * self.coupling(&q)),
+                );
+            }
+            HubDrive::Free { torque_n_m } => {
+                f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
+                f.rows_mut(1, q.len())
+                    .copy_from(&self.elastic_forces(&hub, &q, &qd));
+            }
+        }
+    }
+
+    /// Exact for a prescribed hub; for a free hub the derivative of the mass matrix is left
+    /// out (a quasi-Newton iteration that converges in a few steps).
+    fn tangents(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        k: &mut DMatrix<f64>,
+        c: &mut DMatrix<f64>,
+    ) {
+        let a = self.arm;
+        let (hub, q, qd) = self.split(t, x, v);
+        let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
+        let (s, co) = hub.angle_rad.sin_cos();
+        let k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
+        let c_qq = &a.damping + 2.0 * w * &a.gyroscopic;
+        if let HubDrive::Prescribed(_) = self.drive {
+            k.copy_from(&(k_qq + hub.accel_rad_s2 * &a.gyroscopic));
+            c.copy_from(&c_qq);
+            return;
+        }
+        let n = q.len();
+        let spin_arm = &a.axial_moment + &a.spin_mass * &q;
+        let kg_q = &a.gravity_stiffness * &q;
+        k.view_mut((1, 1), (n, n)).copy_from(&k_qq);
+        c.view_mut((1, 1), (n, n)).copy_from(&c_qq);
+        let k_q_theta = co * (g * &a.axial_mass - &kg_q) - g * s * &a.transverse_mass;
+        k.view_mut((1, 0), (n, 1)).copy_from(&k_q_theta);
+        let c_q_theta = 2.0 * (&a.gyroscopic * &qd) - 2.0 * w * &spin_arm;
+        c.view_mut((1, 0), (n, 1)).copy_from(&c_q_theta);
+        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + a.axial_mass.dot(&q))
+            + g * co * a.transverse_mass.dot(&q)
+            - 0.5 * s * q.dot(&kg_q));
+        let k_theta_q = 2.0 * w * (&a.spin_mass * &qd) + co * (g * &a.axial_mass - &kg_q)
+            - g * s * &a.transverse_mass;
+        k.view_mut((0, 1), (1, n)).copy_from(&k_theta_q.transpose());
+        c[(0, 0)] = 2.0 * spin_arm.dot(&qd);
+        c.view_mut((0, 1), (1, n))
+            .copy_from(&(2.0 * w * spin_arm).transpose());
+    }
+
+    fn is_linear(&self) -> bool {
+        matches!(self.drive, HubDrive::Prescribed(_))
+    }
+}

@@ -1,0 +1,275 @@
+//! Time-stepping the arm alone (no contact) and reading its outputs.
+
+use nalgebra::DVector;
+
+use super::{ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
+use crate::drive::DriveState;
+use crate::integrate::{Integrator, IntegratorKind, State};
+
+/// Energies of the arm, J.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energies {
+    /// Kinetic energy of arm, masses and hub.
+    pub kinetic_j: f64,
+    /// Elastic strain energy ½ qᵀKq.
+    pub strain_j: f64,
+    /// Gravity potential relative to the pivot's height (foreshortening included).
+    pub gravity_j: f64,
+}
+
+impl Energies {
+    /// Sum of the three.
+    pub fn total_j(&self) -> f64 {
+        self.kinetic_j + self.strain_j + self.gravity_j
+    }
+}
+
+/// What one step reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArmSample {
+    /// Time, s.
+    pub t_s: f64,
+    /// Hub angle, rate, acceleration.
+    pub hub: DriveState,
+    /// Tip displacement in the hub frame: [axial stretch, deflection], m.
+    pub tip_deflection_hub_m: [f64; 2],
+    /// Tip velocity relative to the hub frame: [axial, transverse], m/s.
+    pub tip_velocity_hub_m_s: [f64; 2],
+    /// Tip position in the world (pivot at the origin, Y up), m.
+    pub tip_position_world_m: [f64; 2],
+    /// Tip velocity in the world, m/s.
+    pub tip_velocity_world_m_s: [f64; 2],
+    /// Torque the drive applies at the pivot, N·m.
+    pub drive_torque_n_m: f64,
+    /// Energies.
+    pub energies: Energies,
+    /// Elastic coordinates q.
+    pub q: DVector<f64>,
+}
+
+/// The arm, its drive and an integrator, stepped in time.
+pub struct ArmSimulation {
+    /// The model.
+    pub arm: ArmModel,
+    /// The hub drive.
+    pub drive: HubDrive,
+    /// External load held over the next step.
+    pub load: GeneralizedLoad,
+    integrator: Box<dyn Integrator>,
+    state: State,
+    rate_jumps: Vec<(f64, f64)>,
+}
+
+impl ArmSimulation {
+    /// Starts at t = 0 with the arm undeformed and at rest relative to the hub.
+    pub fn new(
+        arm: ArmModel,
+        drive: HubDrive,
+        integrator: IntegratorKind,
+    ) -> Result<Self, ArmError> {
+        let n = arm.elastic_dofs();
+        Self::with_initial(arm, drive, integrator, DVector::zeros(n), DVector::zeros(n))
+    }
+
+    /// Starts at t = 0 from elastic coordinates `q0` and rates `qd0`.
+    pub fn with_initial(
+        arm: ArmModel,
+        drive: HubDrive,
+        integrator: IntegratorKind,
+        q0: DVector<f64>,
+        qd0: DVector<f64>,
+    ) -> Result<Self, ArmError> {
+        let n = arm.elastic_dofs();
+        if q0.len() != n || qd0.len() != n {
+            return Err(ArmError::InvalidParameter {
+                name: "initial q".into(),
+                value: q0.len() as f64,
+                allowed: format!("{n} elastic coordinates"),
+            });
+        }
+        let (x, v) = match &drive {
+            HubDrive::Prescribed(_) => (q0, qd0),
+            HubDrive::Free { .. } => (prepend(0.0, &q0), prepend(0.0, &qd0)),
+        };
+        let rate_jumps = match &drive {
+            HubDrive::Prescribed(p) => p.rate_jumps(),
+            HubDrive::Free { .. } => Vec::new(),
+        };
+        let load = GeneralizedLoad::zero(n);
+        let system = ArmSystem {
+            arm: &arm,
+            drive: &drive,
+            load: &load,
+        };
+        let state = State::consistent(&system, 0.0, x, v)?;
+        let mut sim = ArmSimulation {
+            integrator: integrator.build()?,
+            arm,
+            drive,
+            load,
+            state,
+            rate_jumps,
+        };
+        sim.apply_rate_jumps_up_to(0.0)?;
+        Ok(sim)
+    }
+
+    /// Current time, s.
+    pub fn time_s(&self) -> f64 {
+        self.state.t
+    }
+
+    /// The integrator's state (q or [θ, q], their rates and accelerations).
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// Advances by `h_s` seconds, splitting the step at any jump of the drive's rate.
+    pub fn step(&mut self, h_s: f64) -> Result<(), ArmError> {
+        let t_end = self.state.t + h_s;
+        let next_jump = self
+            .rate_jumps
+            .first()
+            .map(|j| j.0)
+            .filter(|&tj| tj <= t_end);
+        if let Some(tj) = next_jump {
+            self.advance(tj - self.state.t)?;
+            self.apply_rate_jumps_up_to(tj)?;
+            return self.advance(t_end - self.state.t);
+        }
+        self.advance(h_s)
+    }
+
+    fn advance(&mut self, h: f64) -> Result<(), ArmError> {
+        if h <= 1e-12 * self.state.t.abs().max(1.0) {
+            return Ok(());
+        }
+        if self.state.x.is_empty() {
+            self.state.t += h;
+            return Ok(());
+        }
+        let system = ArmSystem {
+            arm: &self.arm,
+            drive: &self.drive,
+            load: &self.load,
+        };
+        self.integrator.step(&system, &mut self.state, h)?;
+        Ok(())
+    }
+
+    /// A jump Δθ̇ of a prescribed rate is an impulse on q: M Δq̇ = −S̃ Δθ̇ (q's momentum equation
+    /// integrated over the instant).
+    fn apply_rate_jumps_up_to(&mut self, t: f64) -> Result<(), ArmError> {
+        while let Some(&(tj, jump)) = self.rate_jumps.first() {
+            if tj > t + 1e-12 {
+                break;
+            }
+            self.rate_jumps.remove(0);
+            if self.state.x.is_empty() {
+                continue;
+            }
+            let coupling = &self.arm.coupling + &self.arm.gyroscopic * &self.state.x;
+            let dqd = self
+                .arm
+                .mass
+                .clone()
+                .lu()
+                .solve(&(-jump * coupling))
+                .ok_or(ArmError::Integrate(
+                    crate::integrate::IntegrateError::SingularMatrix { t: tj },
+                ))?;
+            self.state.v += dqd;
+            let system = ArmSystem {
+                arm: &self.arm,
+                drive: &self.drive,
+                load: &self.load,
+            };
+            self.state.refresh_acceleration(&system)?;
+            self.integrator.reset();
+        }
+        Ok(())
+    }
+
+    /// Steps with `step_s` until `until_s`, handing each sample (the initial one included) to
+    /// `observe`. The last step is shortened to land on `until_s`.
+    pub fn run_until(
+        &mut self,
+        until_s: f64,
+        step_s: f64,
+        mut observe: impl FnMut(&ArmSample),
+    ) -> Result<(), ArmError> {
+        observe(&self.sample());
+        let steps = ((until_s - self.state.t) / step_s).ceil().max(0.0) as usize;
+        for _ in 0..steps {
+            let h = step_s.min(until_s - self.state.t);
+            self.step(h)?;
+            observe(&self.sample());
+        }
+        Ok(())
+    }
+
+    /// Outputs at the current state.
+    pub fn sample(&self) -> ArmSample {
+        let system = ArmSystem {
+            arm: &self.arm,
+            drive: &self.drive,
+            load: &self.load,
+        };
+        let s = &self.state;
+        let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
+        let qdd = match self.drive {
+            HubDrive::Prescribed(_) => s.a.clone(),
+            HubDrive::Free { .. } => {
+                hub.accel_rad_s2 = s.a[0];
+                s.a.rows(1, q.len()).into_owned()
+            }
+        };
+        let [ru, rv, _] = self.arm.tip_rows();
+        let (u, v, ud, vd) = (ru.dot(&q), rv.dot(&q), ru.dot(&qd), rv.dot(&qd));
+        let l = self.arm.length_m();
+        let (sn, cs) = hub.angle_rad.sin_cos();
+        let w = hub.rate_rad_s;
+        // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
+        let vel_body = [ud - w * v, vd + w * (l + u)];
+        ArmSample {
+            t_s: s.t,
+            hub,
+            tip_deflection_hub_m: [u, v],
+            tip_velocity_hub_m_s: [ud, vd],
+            tip_position_world_m: [cs * (l + u) - sn * v, sn * (l + u) + cs * v],
+            tip_velocity_world_m_s: [
+                cs * vel_body[0] - sn * vel_body[1],
+                sn * vel_body[0] + cs * vel_body[1],
+            ],
+            drive_torque_n_m: system.drive_torque(&hub, &q, &qd, &qdd),
+            energies: system.energies(&hub, &q, &qd),
+            q,
+        }
+    }
+
+    /// Deformed centreline in the world at `samples` + 1 stations from pivot to tip, m.
+    pub fn centreline_world_m(&self, samples: usize) -> Vec<[f64; 2]> {
+        let system = ArmSystem {
+            arm: &self.arm,
+            drive: &self.drive,
+            load: &self.load,
+        };
+        let (hub, q, _) = system.split(self.state.t, &self.state.x, &self.state.v);
+        let (sn, cs) = hub.angle_rad.sin_cos();
+        let l = self.arm.length_m();
+        (0..=samples)
+            .map(|i| {
+                let x = l * i as f64 / samples.max(1) as f64;
+                let [u, v] = self.arm.deflection_at(x, &q);
+                [cs * (x + u) - sn * v, sn * (x + u) + cs * v]
+            })
+            .collect()
+    }
+}
+
+fn prepend(first: f64, rest: &DVector<f64>) -> DVector<f64> {
+    DVector::from_iterator(
+        rest.len() + 1,
+        std::iter::once(first).chain(rest.iter().copied()),
+    )
+}

@@ -1,0 +1,130 @@
+//! Clamped-hub eigenmodes: K φ = ω² M φ, optionally at a steady spin rate Ω.
+
+use nalgebra::{DMatrix, DVector};
+
+use super::{BeamError, BeamModel};
+
+/// Mass-normalised eigenmodes of the clamped arm, ascending in frequency.
+#[derive(Debug, Clone)]
+pub struct ModalBasis {
+    /// Natural circular frequencies ω_i, rad/s.
+    pub omegas_rad_s: Vec<f64>,
+    /// Mode shapes as columns over the beam DOFs, scaled so that Φᵀ M Φ = I.
+    pub shapes: DMatrix<f64>,
+}
+
+impl ModalBasis {
+    /// Number of modes.
+    pub fn len(&self) -> usize {
+        self.omegas_rad_s.len()
+    }
+
+    /// True if there are no modes.
+    pub fn is_empty(&self) -> bool {
+        self.omegas_rad_s.is_empty()
+    }
+
+    /// Natural frequencies in Hz.
+    pub fn frequencies_hz(&self) -> Vec<f64> {
+        self.omegas_rad_s
+            .iter()
+            .map(|w| w / std::f64::consts::TAU)
+            .collect()
+    }
+
+    /// The first `n` modes.
+    pub fn truncated(&self, n: usize) -> ModalBasis {
+        ModalBasis {
+            omegas_rad_s: self.omegas_rad_s[..n].to_vec(),
+            shapes: self.shapes.columns(0, n).into_owned(),
+        }
+    }
+}
+
+impl BeamModel {
+    /// All eigenmodes of the arm clamped at a hub at rest, without gravity.
+    pub fn modes(&self) -> Result<ModalBasis, BeamError> {
+        solve_generalized(&self.stiffness, &self.mass)
+    }
+
+    /// Eigenmodes of the arm on a hub spinning steadily at `spin_rad_s` (no gravity):
+    /// (K + Ω²(K_c − M_tr)) φ = ω² M φ, centrifugal stiffening included when `stiffening`.
+    /// Errors when the spin makes the arm unstable (a negative ω²).
+    pub fn modes_spinning(
+        &self,
+        spin_rad_s: f64,
+        stiffening: bool,
+    ) -> Result<ModalBasis, BeamError> {
+        let w2 = spin_rad_s * spin_rad_s;
+        let mut k = &self.stiffness - w2 * &self.translational_mass;
+        if stiffening {
+            k += w2 * &self.centrifugal_stiffness;
+        }
+        solve_generalized(&k, &self.mass)
+    }
+}
+
+impl BeamModel {
+    /// Eigenmodes of the arm on a hub that turns freely, with `hub_inertia_kg_m2` of its own
+    /// (no gravity). The hub's equation J θ̈ + Sᵀq̈ = 0 eliminates θ, leaving
+    /// K φ = ω² (M − S Sᵀ / J) φ with J the pivot inertia of hub, arm and masses.
+    /// The rigid rotation (ω = 0) is not among the modes.
+    pub fn modes_free_hub(&self, hub_inertia_kg_m2: f64) -> Result<ModalBasis, BeamError> {
+        let j = self.hub_inertia_kg_m2 + hub_inertia_kg_m2;
+        let condensed = &self.mass - (&self.coupling * self.coupling.transpose()) / j;
+        solve_generalized(&self.stiffness, &condensed)
+    }
+}
+
+/// Solves K φ = λ M φ for symmetric K and positive-definite M through M = L Lᵀ.
+fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, BeamError> {
+    let chol = m.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
+        matrix: "mass",
+        why: "every DOF needs mass or inertia".into(),
+    })?;
+    let l = chol.l();
+    let l_inv = l
+        .clone()
+        .try_inverse()
+        .ok_or(BeamError::NotPositiveDefinite {
+            matrix: "mass",
+            why: "singular Cholesky factor".into(),
+        })?;
+    let mut a = &l_inv * k * l_inv.transpose();
+    a = 0.5 * (&a + a.transpose());
+    let eig = a.symmetric_eigen();
+    let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
+    order.sort_by(|&i, &j| eig.eigenvalues[i].total_cmp(&eig.eigenvalues[j]));
+    if let Some(&lowest) = order.first()
+        && eig.eigenvalues[lowest] <= 0.0
+    {
+        return Err(BeamError::NotPositiveDefinite {
+            matrix: "stiffness",
+            why: format!(
+                "lowest eigenvalue ω² = {:.4e} (the arm is unstable in this state)",
+                eig.eigenvalues[lowest]
+            ),
+        });
+    }
+    let l_inv_t = l_inv.transpose();
+    let mut shapes = DMatrix::zeros(k.nrows(), order.len());
+    for (col, &i) in order.iter().enumerate() {
+        let mut phi: DVector<f64> = &l_inv_t * eig.eigenvectors.column(i);
+        // Sign convention: the largest component is positive, so runs are reproducible.
+        if phi
+            .iter()
+            .copied()
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(0.0)
+            < 0.0
+        {
+            phi.neg_mut();
+        }
+        shapes.set_column(col, &phi);
+    }
+    let omegas_rad_s = order.iter().map(|&i| eig.eigenvalues[i].sqrt()).collect();
+    Ok(ModalBasis {
+        omegas_rad_s,
+        shapes,
+    })
+}

@@ -1,0 +1,217 @@
+//! Time integrators for second-order systems M(t, x) ẍ = f(t, x, ẋ), behind one trait.
+//!
+//! The implicit family ([`GeneralizedAlpha`]: Chung–Hulbert generalized-α, HHT-α and Newmark)
+//! is the default; the explicit ones ([`SymplecticEuler`], [`Rk4`], [`ExplicitEuler`]) exist to
+//! compare cost and to show where they fail (`../shared/reference/integrators.md`). Steps are
+//! fixed here; the caller chooses them.
+
+mod alpha;
+mod explicit;
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+pub use alpha::GeneralizedAlpha;
+pub use explicit::{ExplicitEuler, Rk4, SymplecticEuler};
+
+/// A mechanical system in generalized coordinates: M(t, x) ẍ = f(t, x, ẋ).
+pub trait Dynamics {
+    /// Number of generalized coordinates.
+    fn dofs(&self) -> usize;
+    /// Writes the generalized mass matrix M(t, x) into `m`.
+    fn mass_matrix(&self, t: f64, x: &DVector<f64>, m: &mut DMatrix<f64>);
+    /// Writes every generalized force except inertia, f(t, x, ẋ), into `f`.
+    fn forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>);
+    /// Writes the tangents K_t = −∂f/∂x and C_t = −∂f/∂ẋ. The default differentiates
+    /// [`Self::forces`] numerically; override with exact tangents where they are cheap.
+    fn tangents(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        k: &mut DMatrix<f64>,
+        c: &mut DMatrix<f64>,
+    ) {
+        finite_difference_tangents(self, t, x, v, k, c);
+    }
+    /// True when f is affine in (x, ẋ) and M is constant, so that one Newton iteration with the
+    /// exact tangents solves an implicit step exactly.
+    fn is_linear(&self) -> bool {
+        false
+    }
+}
+
+/// Central-difference tangents of `sys.forces`.
+pub fn finite_difference_tangents<S: Dynamics + ?Sized>(
+    sys: &S,
+    t: f64,
+    x: &DVector<f64>,
+    v: &DVector<f64>,
+    k: &mut DMatrix<f64>,
+    c: &mut DMatrix<f64>,
+) {
+    let n = sys.dofs();
+    let (mut fp, mut fm) = (DVector::zeros(n), DVector::zeros(n));
+    let mut xp = x.clone();
+    let mut vp = v.clone();
+    for j in 0..n {
+        let h = 1e-7 * x[j].abs().max(1e-3);
+        xp[j] = x[j] + h;
+        sys.forces(t, &xp, v, &mut fp);
+        xp[j] = x[j] - h;
+        sys.forces(t, &xp, v, &mut fm);
+        xp[j] = x[j];
+        k.set_column(j, &((&fm - &fp) / (2.0 * h)));
+        let h = 1e-7 * v[j].abs().max(1e-3);
+        vp[j] = v[j] + h;
+        sys.forces(t, x, &vp, &mut fp);
+        vp[j] = v[j] - h;
+        sys.forces(t, x, &vp, &mut fm);
+        vp[j] = v[j];
+        c.set_column(j, &((&fm - &fp) / (2.0 * h)));
+    }
+}
+
+/// The state an integrator advances: time, coordinates, velocities and accelerations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Time, s.
+    pub t: f64,
+    /// Generalized coordinates x.
+    pub x: DVector<f64>,
+    /// Generalized velocities ẋ.
+    pub v: DVector<f64>,
+    /// Generalized accelerations ẍ, consistent with the equations of motion at (t, x, ẋ).
+    pub a: DVector<f64>,
+}
+
+impl State {
+    /// A state at (t, x, ẋ) whose acceleration solves M ẍ = f.
+    pub fn consistent<S: Dynamics + ?Sized>(
+        sys: &S,
+        t: f64,
+        x: DVector<f64>,
+        v: DVector<f64>,
+    ) -> Result<Self, IntegrateError> {
+        let mut a = DVector::zeros(sys.dofs());
+        solve_acceleration(sys, t, &x, &v, &mut a)?;
+        Ok(State { t, x, v, a })
+    }
+
+    /// Recomputes the acceleration after x or ẋ was changed from outside (an impulse).
+    pub fn refresh_acceleration<S: Dynamics + ?Sized>(
+        &mut self,
+        sys: &S,
+    ) -> Result<(), IntegrateError> {
+        solve_acceleration(sys, self.t, &self.x, &self.v, &mut self.a)
+    }
+}
+
+/// Solves M(t, x) ẍ = f(t, x, ẋ) for ẍ.
+pub fn solve_acceleration<S: Dynamics + ?Sized>(
+    sys: &S,
+    t: f64,
+    x: &DVector<f64>,
+    v: &DVector<f64>,
+    a: &mut DVector<f64>,
+) -> Result<(), IntegrateError> {
+    let n = sys.dofs();
+    if n == 0 {
+        *a = DVector::zeros(0);
+        return Ok(());
+    }
+    let mut m = DMatrix::zeros(n, n);
+    let mut f = DVector::zeros(n);
+    sys.mass_matrix(t, x, &mut m);
+    sys.forces(t, x, v, &mut f);
+    let lu = m.lu();
+    *a = lu.solve(&f).ok_or(IntegrateError::SingularMatrix { t })?;
+    Ok(())
+}
+
+/// What went wrong in a step.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum IntegrateError {
+    /// The mass or iteration matrix could not be factorised.
+    #[error("singular matrix at t = {t} s")]
+    SingularMatrix { t: f64 },
+    /// Newton's iteration did not converge.
+    #[error("Newton iteration did not converge at t = {t} s (residual {residual:.3e})")]
+    NoConvergence { t: f64, residual: f64 },
+    /// The state blew up (NaN or infinity): the step is beyond the method's stability limit.
+    #[error(
+        "state is no longer finite at t = {t} s: the step is beyond the method's stability limit"
+    )]
+    NonFinite { t: f64 },
+    /// A parameter of the method outside its range.
+    #[error("integrator parameter `{name}` = {value} is invalid: allowed {allowed}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        allowed: &'static str,
+    },
+}
+
+/// One time-stepping method.
+pub trait Integrator: Send {
+    /// Short name, as written in scenarios.
+    fn name(&self) -> &'static str;
+    /// Advances `state` by `h` seconds.
+    fn step(&mut self, sys: &dyn Dynamics, state: &mut State, h: f64)
+    -> Result<(), IntegrateError>;
+    /// Forgets any history (call after an impulse changed the state from outside).
+    fn reset(&mut self) {}
+}
+
+/// The integrators a scenario can name, with their parameters.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum IntegratorKind {
+    /// Chung–Hulbert generalized-α with spectral radius at infinity `rho_inf` ∈ [0, 1].
+    GeneralizedAlpha { rho_inf: f64 },
+    /// Newmark-β with the given β and γ (β = 1/4, γ = 1/2: average acceleration).
+    Newmark { beta: f64, gamma: f64 },
+    /// Hilber–Hughes–Taylor α ∈ [−1/3, 0].
+    Hht { alpha: f64 },
+    /// Semi-implicit (symplectic) Euler.
+    SymplecticEuler,
+    /// Classical fourth-order Runge–Kutta.
+    Rk4,
+    /// Forward Euler: unstable on every undamped oscillation, kept as a failure case.
+    ExplicitEuler,
+}
+
+impl Default for IntegratorKind {
+    /// Generalized-α with ρ∞ = 0.8: second order, damps only what the step cannot resolve.
+    fn default() -> Self {
+        IntegratorKind::GeneralizedAlpha { rho_inf: 0.8 }
+    }
+}
+
+impl IntegratorKind {
+    /// Builds the integrator, checking its parameters.
+    pub fn build(&self) -> Result<Box<dyn Integrator>, IntegrateError> {
+        Ok(match *self {
+            IntegratorKind::GeneralizedAlpha { rho_inf } => {
+                Box::new(GeneralizedAlpha::chung_hulbert(rho_inf)?)
+            }
+            IntegratorKind::Newmark { beta, gamma } => {
+                Box::new(GeneralizedAlpha::newmark(beta, gamma)?)
+            }
+            IntegratorKind::Hht { alpha } => Box::new(GeneralizedAlpha::hht(alpha)?),
+            IntegratorKind::SymplecticEuler => Box::new(SymplecticEuler::default()),
+            IntegratorKind::Rk4 => Box::new(Rk4::default()),
+            IntegratorKind::ExplicitEuler => Box::new(ExplicitEuler::default()),
+        })
+    }
+}
+
+pub(crate) fn check_finite(state: &State) -> Result<(), IntegrateError> {
+    let finite = state.x.iter().chain(state.v.iter()).all(|v| v.is_finite());
+    if finite {
+        Ok(())
+    } else {
+        Err(IntegrateError::NonFinite { t: state.t })
+    }
+}
