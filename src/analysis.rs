@@ -20,29 +20,12 @@ pub struct LiftSummary {
 /// Summarises `samples`; the residual phase is every sample at or after `drive_end_s`.
 pub fn summarize(samples: &[ArmSample], drive_end_s: f64) -> LiftSummary {
     let deflection = |s: &ArmSample| s.tip_deflection_hub_m[1];
-    let peak_tip_deflection_m = samples
-        .iter()
-        .map(|s| deflection(s).abs())
-        .fold(0.0, f64::max);
-    let peak_drive_torque_n_m = samples
-        .iter()
-        .map(|s| s.drive_torque_n_m.abs())
-        .fold(0.0, f64::max);
-    let residual: Vec<(f64, f64)> = samples
-        .iter()
-        .filter(|s| s.t_s >= drive_end_s)
-        .map(|s| (s.t_s, deflection(s)))
-        .collect();
-    let (lo, hi) = residual
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, v)| {
-            (lo.min(v), hi.max(v))
-        });
-    let residual_amplitude_m = if residual.is_empty() {
-        0.0
-    } else {
-        0.5 * (hi - lo)
-    };
+    let peak_tip_deflection_m = samples.iter().map(|s| deflection(s).abs()).fold(0.0, f64::max);
+    let peak_drive_torque_n_m = samples.iter().map(|s| s.drive_torque_n_m.abs()).fold(0.0, f64::max);
+    let residual: Vec<(f64, f64)> =
+        samples.iter().filter(|s| s.t_s >= drive_end_s).map(|s| (s.t_s, deflection(s))).collect();
+    let (lo, hi) = residual.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, v)| (lo.min(v), hi.max(v)));
+    let residual_amplitude_m = if residual.is_empty() { 0.0 } else { 0.5 * (hi - lo) };
     LiftSummary {
         peak_tip_deflection_m,
         residual_amplitude_m,
@@ -111,27 +94,16 @@ mod tests {
     #[test]
     fn crossing_frequency_of_a_sine() {
         let f = 1.7;
-        let s: Vec<(f64, f64)> = (0..5000)
-            .map(|i| i as f64 * 1e-3)
-            .map(|t| (t, (std::f64::consts::TAU * f * t).sin() + 0.3))
-            .collect();
+        let s: Vec<(f64, f64)> =
+            (0..5000).map(|i| i as f64 * 1e-3).map(|t| (t, (std::f64::consts::TAU * f * t).sin() + 0.3)).collect();
         assert!((crossing_frequency_hz(&s) - f).abs() < 1e-3);
     }
 
     #[test]
     fn classes_follow_the_seed_bands() {
         assert_eq!(StiffnessClass::of_ratio(1.0 / 800.0), StiffnessClass::Rigid);
-        assert_eq!(
-            StiffnessClass::of_ratio(1.0 / 500.0),
-            StiffnessClass::RigidFlexible
-        );
-        assert_eq!(
-            StiffnessClass::of_ratio(1.0 / 300.0),
-            StiffnessClass::Flexible
-        );
-        assert_eq!(
-            StiffnessClass::of_ratio(1.0 / 200.0),
-            StiffnessClass::BeyondYield
-        );
+        assert_eq!(StiffnessClass::of_ratio(1.0 / 500.0), StiffnessClass::RigidFlexible);
+        assert_eq!(StiffnessClass::of_ratio(1.0 / 300.0), StiffnessClass::Flexible);
+        assert_eq!(StiffnessClass::of_ratio(1.0 / 200.0), StiffnessClass::BeyondYield);
     }
 }

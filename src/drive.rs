@@ -57,20 +57,14 @@ pub struct DriveState {
 impl DriveState {
     /// At rest at `angle_rad` (rad).
     const fn at_rest(angle_rad: f64) -> Self {
-        Self {
-            angle_rad,
-            rate_rad_s: 0.0,
-            accel_rad_s2: 0.0,
-            jerk_rad_s3: 0.0,
-        }
+        Self { angle_rad, rate_rad_s: 0.0, accel_rad_s2: 0.0, jerk_rad_s3: 0.0 }
     }
 
     /// State after `dt` seconds of constant jerk `self.jerk_rad_s3`.
     fn advanced(&self, dt: f64) -> Self {
         let j = self.jerk_rad_s3;
         Self {
-            angle_rad: self.angle_rad
-                + dt * (self.rate_rad_s + dt * (0.5 * self.accel_rad_s2 + dt * j / 6.0)),
+            angle_rad: self.angle_rad + dt * (self.rate_rad_s + dt * (0.5 * self.accel_rad_s2 + dt * j / 6.0)),
             rate_rad_s: self.rate_rad_s + dt * (self.accel_rad_s2 + 0.5 * dt * j),
             accel_rad_s2: self.accel_rad_s2 + dt * j,
             jerk_rad_s3: j,
@@ -165,11 +159,7 @@ struct Piece {
 
 impl Piece {
     const fn new(t0_s: f64, accel_rad_s2: f64, jerk_rad_s3: f64) -> Self {
-        Self {
-            t0_s,
-            accel_rad_s2,
-            jerk_rad_s3,
-        }
+        Self { t0_s, accel_rad_s2, jerk_rad_s3 }
     }
 }
 
@@ -195,24 +185,12 @@ impl Move {
         let end_rad = require_finite("end_rad", end_rad)?;
         let duration_s = require_positive("duration_s", duration_s)?;
         if start_rad == end_rad {
-            return Err(invalid(
-                "end_rad",
-                end_rad,
-                "finite and different from start_rad (use `hold` for no motion)",
-            ));
+            return Err(invalid("end_rad", end_rad, "finite and different from start_rad (use `hold` for no motion)"));
         }
         if !(end_rad - start_rad).is_finite() {
-            return Err(invalid(
-                "end_rad",
-                end_rad,
-                "such that end_rad - start_rad is finite",
-            ));
+            return Err(invalid("end_rad", end_rad, "such that end_rad - start_rad is finite"));
         }
-        Ok(Self {
-            start_rad,
-            end_rad,
-            duration_s,
-        })
+        Ok(Self { start_rad, end_rad, duration_s })
     }
 
     /// Signed displacement `B − A`, rad.
@@ -256,18 +234,9 @@ impl MotionProfile {
     pub fn uniform(start_rad: f64, end_rad: f64, duration_s: f64) -> Result<Self, DriveError> {
         let mv = Move::new(start_rad, end_rad, duration_s)?;
         let rate = mv.delta() / mv.duration_s;
-        let initial = DriveState {
-            angle_rad: mv.start_rad,
-            rate_rad_s: rate,
-            accel_rad_s2: 0.0,
-            jerk_rad_s3: 0.0,
-        };
+        let initial = DriveState { angle_rad: mv.start_rad, rate_rad_s: rate, accel_rad_s2: 0.0, jerk_rad_s3: 0.0 };
         let segments = chain(initial, &[Piece::new(0.0, 0.0, 0.0)]);
-        let peaks = Peaks {
-            rate: rate.abs(),
-            accel: 0.0,
-            jerk: 0.0,
-        };
+        let peaks = Peaks { rate: rate.abs(), accel: 0.0, jerk: 0.0 };
         Self::assemble(Kind::Uniform, &mv, peaks, segments)
     }
 
@@ -293,16 +262,9 @@ impl MotionProfile {
                 (t_a, mv.distance() / (t_a * (mv.duration_s - t_a)))
             }
         };
-        let pieces = [
-            Piece::new(0.0, mv.sign() * accel, 0.0),
-            Piece::new(t_a, 0.0, 0.0),
-        ];
+        let pieces = [Piece::new(0.0, mv.sign() * accel, 0.0), Piece::new(t_a, 0.0, 0.0)];
         let segments = chain(DriveState::at_rest(mv.start_rad), &pieces);
-        let peaks = Peaks {
-            rate: mv.distance() / (mv.duration_s - t_a),
-            accel,
-            jerk: f64::INFINITY,
-        };
+        let peaks = Peaks { rate: mv.distance() / (mv.duration_s - t_a), accel, jerk: f64::INFINITY };
         Self::assemble(Kind::Trapezoidal, &mv, peaks, segments)
     }
 
@@ -316,12 +278,7 @@ impl MotionProfile {
     /// non-positive limits, fractions outside `(0, 0.5]`, or accel/jerk limits
     /// with which the profile cannot reach `end_rad` in `duration_s` while
     /// using exactly those peaks (the bound is given in `allowed`).
-    pub fn s_curve(
-        start_rad: f64,
-        end_rad: f64,
-        duration_s: f64,
-        limit: SCurveLimit,
-    ) -> Result<Self, DriveError> {
+    pub fn s_curve(start_rad: f64, end_rad: f64, duration_s: f64, limit: SCurveLimit) -> Result<Self, DriveError> {
         let mv = Move::new(start_rad, end_rad, duration_s)?;
         let (t_a, t_j, accel, jerk) = s_curve_shape(&mv, limit)?;
         let (signed_accel, signed_jerk) = (mv.sign() * accel, mv.sign() * jerk);
@@ -332,11 +289,7 @@ impl MotionProfile {
             Piece::new(t_a, 0.0, 0.0),
         ];
         let segments = chain(DriveState::at_rest(mv.start_rad), &pieces);
-        let peaks = Peaks {
-            rate: mv.distance() / (mv.duration_s - t_a),
-            accel,
-            jerk,
-        };
+        let peaks = Peaks { rate: mv.distance() / (mv.duration_s - t_a), accel, jerk };
         Self::assemble(Kind::SCurve, &mv, peaks, segments)
     }
 
@@ -363,11 +316,7 @@ impl MotionProfile {
     /// # Errors
     /// [`DriveError::InvalidParameter`] for a non-finite start angle or final
     /// rate, or a non-positive / non-finite ramp time.
-    pub fn spin_up(
-        start_rad: f64,
-        final_rate_rad_s: f64,
-        ramp_time_s: f64,
-    ) -> Result<Self, DriveError> {
+    pub fn spin_up(start_rad: f64, final_rate_rad_s: f64, ramp_time_s: f64) -> Result<Self, DriveError> {
         let start_rad = require_finite("start_rad", start_rad)?;
         let rate = require_finite("final_rate_rad_s", final_rate_rad_s)?;
         let ramp = require_positive("ramp_time_s", ramp_time_s)?;
@@ -375,16 +324,10 @@ impl MotionProfile {
         let peak_accel = 2.0 * rate.abs() / ramp;
         let peak_jerk = 2.0 * PI * rate.abs() / (ramp * ramp);
         if !(end_rad.is_finite() && peak_accel.is_finite() && peak_jerk.is_finite()) {
-            return Err(invalid(
-                "ramp_time_s",
-                ramp,
-                "such that the end angle, peak accel and peak jerk are finite",
-            ));
+            return Err(invalid("ramp_time_s", ramp, "such that the end angle, peak accel and peak jerk are finite"));
         }
         Ok(Self {
-            kind: Kind::SpinUp {
-                final_rate_rad_s: rate,
-            },
+            kind: Kind::SpinUp { final_rate_rad_s: rate },
             start_rad,
             end_rad,
             duration_s: ramp,
@@ -408,8 +351,7 @@ impl MotionProfile {
         } else if t_s < 0.5 * self.duration_s {
             self.first_half_state(t_s, true)
         } else {
-            self.first_half_state(self.duration_s - t_s, false)
-                .point_mirrored(self.start_rad + self.end_rad)
+            self.first_half_state(self.duration_s - t_s, false).point_mirrored(self.start_rad + self.end_rad)
         }
     }
 
@@ -474,12 +416,7 @@ impl MotionProfile {
 
     /// Builds a symmetric profile and checks that its first half really
     /// reaches the midpoint angle (guards against degenerate extreme inputs).
-    fn assemble(
-        kind: Kind,
-        mv: &Move,
-        peaks: Peaks,
-        first_half: Vec<Segment>,
-    ) -> Result<Self, DriveError> {
+    fn assemble(kind: Kind, mv: &Move, peaks: Peaks, first_half: Vec<Segment>) -> Result<Self, DriveError> {
         let jerk_ok = peaks.jerk.is_finite() || kind == Kind::Trapezoidal;
         if !(peaks.rate.is_finite() && peaks.accel.is_finite() && jerk_ok) {
             return Err(invalid(
@@ -505,9 +442,7 @@ impl MotionProfile {
     /// Verifies that the first half ends at `(A + B)/2` at `T/2`.
     fn check_midpoint(&self) -> Result<(), DriveError> {
         let mid = self.start_rad.midpoint(self.end_rad);
-        let reached = self
-            .first_half_state(0.5 * self.duration_s, false)
-            .angle_rad;
+        let reached = self.first_half_state(0.5 * self.duration_s, false).angle_rad;
         let tol = 1e-9 * (self.end_rad - self.start_rad).abs()
             + 8.0 * f64::EPSILON * (self.start_rad.abs() + self.end_rad.abs());
         if (reached - mid).abs() <= tol {
@@ -569,19 +504,12 @@ impl MotionProfile {
 /// and jerk imposed exactly.
 fn chain(initial: DriveState, pieces: &[Piece]) -> Vec<Segment> {
     let mut segments = Vec::with_capacity(pieces.len());
-    let mut current = Segment {
-        t0_s: 0.0,
-        state: initial,
-    };
+    let mut current = Segment { t0_s: 0.0, state: initial };
     for piece in pieces {
         let reached = current.state.advanced(piece.t0_s - current.t0_s);
         current = Segment {
             t0_s: piece.t0_s,
-            state: DriveState {
-                accel_rad_s2: piece.accel_rad_s2,
-                jerk_rad_s3: piece.jerk_rad_s3,
-                ..reached
-            },
+            state: DriveState { accel_rad_s2: piece.accel_rad_s2, jerk_rad_s3: piece.jerk_rad_s3, ..reached },
         };
         segments.push(current);
     }
@@ -613,19 +541,13 @@ fn trapezoid_ramp_time(mv: &Move, accel: f64) -> Result<f64, DriveError> {
 /// S-curve shape `(t_a s, t_j s, peak accel rad/s², peak jerk rad/s³)`.
 fn s_curve_shape(mv: &Move, limit: SCurveLimit) -> Result<(f64, f64, f64, f64), DriveError> {
     match limit {
-        SCurveLimit::AccelJerk {
-            accel_rad_s2,
-            jerk_rad_s3,
-        } => {
+        SCurveLimit::AccelJerk { accel_rad_s2, jerk_rad_s3 } => {
             let accel = require_positive("accel_rad_s2", accel_rad_s2)?;
             let jerk = require_positive("jerk_rad_s3", jerk_rad_s3)?;
             let (t_a, t_j) = s_curve_times(mv, accel, jerk)?;
             Ok((t_a, t_j, accel, jerk))
         }
-        SCurveLimit::Fractions {
-            ramp_fraction,
-            jerk_fraction,
-        } => {
+        SCurveLimit::Fractions { ramp_fraction, jerk_fraction } => {
             let t_a = require_fraction("ramp_fraction", ramp_fraction)? * mv.duration_s;
             let t_j = require_fraction("jerk_fraction", jerk_fraction)? * t_a;
             let accel = mv.distance() / ((t_a - t_j) * (mv.duration_s - t_a));
@@ -706,35 +628,19 @@ fn min_s_curve_accel(t: f64, dist: f64, jerk: f64) -> f64 {
 }
 
 fn invalid(name: &'static str, value: f64, allowed: impl Into<String>) -> DriveError {
-    DriveError::InvalidParameter {
-        name,
-        value,
-        allowed: allowed.into(),
-    }
+    DriveError::InvalidParameter { name, value, allowed: allowed.into() }
 }
 
 fn require_finite(name: &'static str, value: f64) -> Result<f64, DriveError> {
-    if value.is_finite() {
-        Ok(value)
-    } else {
-        Err(invalid(name, value, "any finite value"))
-    }
+    if value.is_finite() { Ok(value) } else { Err(invalid(name, value, "any finite value")) }
 }
 
 fn require_positive(name: &'static str, value: f64) -> Result<f64, DriveError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(value)
-    } else {
-        Err(invalid(name, value, "finite and > 0"))
-    }
+    if value.is_finite() && value > 0.0 { Ok(value) } else { Err(invalid(name, value, "finite and > 0")) }
 }
 
 fn require_fraction(name: &'static str, value: f64) -> Result<f64, DriveError> {
-    if value > 0.0 && value <= 0.5 {
-        Ok(value)
-    } else {
-        Err(invalid(name, value, "in (0, 0.5]"))
-    }
+    if value > 0.0 && value <= 0.5 { Ok(value) } else { Err(invalid(name, value, "in (0, 0.5]")) }
 }
 
 #[cfg(test)]
@@ -746,10 +652,7 @@ mod tests {
     const DUR: f64 = 2.0;
 
     fn assert_close(actual: f64, expected: f64, tol: f64, what: &str) {
-        assert!(
-            (actual - expected).abs() <= tol,
-            "{what}: got {actual}, expected {expected} (tol {tol})"
-        );
+        assert!((actual - expected).abs() <= tol, "{what}: got {actual}, expected {expected} (tol {tol})");
     }
 
     /// `n + 1` evenly spaced times over `[-0.05 T, 1.05 T]`.
@@ -767,11 +670,9 @@ mod tests {
     /// Parses the bound `x` out of an `allowed` text of the form ">= x ...".
     fn allowed_bound(result: Result<MotionProfile, DriveError>) -> f64 {
         match result {
-            Err(DriveError::InvalidParameter { allowed, .. }) => allowed
-                .split_whitespace()
-                .nth(1)
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(f64::NAN),
+            Err(DriveError::InvalidParameter { allowed, .. }) => {
+                allowed.split_whitespace().nth(1).and_then(|s| s.parse().ok()).unwrap_or(f64::NAN)
+            }
             Ok(p) => panic!("expected an error, got {p:?}"),
         }
     }
@@ -783,12 +684,7 @@ mod tests {
         let dist = (end - start).abs();
         let s0 = p.sample(0.0);
         assert_close(s0.angle_rad, start, 1e-12 * dist, "angle at 0");
-        assert_close(
-            s0.rate_rad_s,
-            start_rate,
-            1e-12 * dist / duration,
-            "rate at 0",
-        );
+        assert_close(s0.rate_rad_s, start_rate, 1e-12 * dist / duration, "rate at 0");
         let before = p.sample(-0.5 * duration);
         assert_eq!(before.angle_rad, start);
         assert_eq!(before.rate_rad_s, 0.0);
@@ -802,12 +698,7 @@ mod tests {
         let near = p.sample(duration * (1.0 - 1e-9));
         assert_close(near.angle_rad, end, 1e-8 * dist, "angle just before T");
         if start_rate == 0.0 {
-            assert_close(
-                near.rate_rad_s,
-                0.0,
-                1e-6 * dist / duration,
-                "rate just before T",
-            );
+            assert_close(near.rate_rad_s, 0.0, 1e-6 * dist / duration, "rate just before T");
         }
         assert_close(p.end_rad(), end, 0.0, "end_rad()");
         assert_close(p.start_rad(), start, 0.0, "start_rad()");
@@ -822,18 +713,8 @@ mod tests {
         let mid = 0.5 * (start + end);
         let dt = 1e-9 * duration;
         let expected = mid - (end - start).signum() * peak_rate * dt;
-        assert_close(
-            p.sample(0.5 * duration).angle_rad,
-            mid,
-            1e-12 * dist,
-            "angle at T/2",
-        );
-        assert_close(
-            p.sample(0.5 * duration - dt).angle_rad,
-            expected,
-            1e-11 * dist,
-            "angle just before T/2",
-        );
+        assert_close(p.sample(0.5 * duration).angle_rad, mid, 1e-12 * dist, "angle at T/2");
+        assert_close(p.sample(0.5 * duration - dt).angle_rad, expected, 1e-11 * dist, "angle just before T/2");
     }
 
     /// Central differences of angle, rate and accel against rate, accel and
@@ -854,9 +735,7 @@ mod tests {
             ];
             let analytic = [mid.rate_rad_s, mid.accel_rad_s2, mid.jerk_rad_s3];
             let labels = ["rate", "accel", "jerk"];
-            for ((num, ana), (scale, label)) in
-                numeric.iter().zip(analytic).zip(scales.iter().zip(labels))
-            {
+            for ((num, ana), (scale, label)) in numeric.iter().zip(analytic).zip(scales.iter().zip(labels)) {
                 assert_close(*num, ana, 1e-6 * scale, &format!("{label} at t = {t}"));
             }
         }
@@ -867,38 +746,16 @@ mod tests {
         for t in dense_times(t_end, 4000) {
             let (u, d) = (up.sample(t), down.sample(t));
             let tol = 1e-12 * (1.0 + pivot.abs() + u.angle_rad.abs());
-            assert_close(
-                d.angle_rad - pivot,
-                -(u.angle_rad - pivot),
-                tol,
-                "mirrored angle",
-            );
+            assert_close(d.angle_rad - pivot, -(u.angle_rad - pivot), tol, "mirrored angle");
             let tol_of = |x: f64| 1e-12 * (1.0 + x.abs());
-            assert_close(
-                d.rate_rad_s,
-                -u.rate_rad_s,
-                tol_of(u.rate_rad_s),
-                "mirrored rate",
-            );
-            assert_close(
-                d.accel_rad_s2,
-                -u.accel_rad_s2,
-                tol_of(u.accel_rad_s2),
-                "mirrored accel",
-            );
-            assert_close(
-                d.jerk_rad_s3,
-                -u.jerk_rad_s3,
-                tol_of(u.jerk_rad_s3),
-                "mirrored jerk",
-            );
+            assert_close(d.rate_rad_s, -u.rate_rad_s, tol_of(u.rate_rad_s), "mirrored rate");
+            assert_close(d.accel_rad_s2, -u.accel_rad_s2, tol_of(u.accel_rad_s2), "mirrored accel");
+            assert_close(d.jerk_rad_s3, -u.jerk_rad_s3, tol_of(u.jerk_rad_s3), "mirrored jerk");
         }
     }
 
     fn max_abs(p: &MotionProfile, duration: f64, pick: fn(&DriveState) -> f64) -> f64 {
-        dense_times(duration, 100_000)
-            .map(|t| pick(&p.sample(t)).abs())
-            .fold(0.0_f64, f64::max)
+        dense_times(duration, 100_000).map(|t| pick(&p.sample(t)).abs()).fold(0.0_f64, f64::max)
     }
 
     #[test]
@@ -927,8 +784,8 @@ mod tests {
     #[test]
     fn trapezoid_with_accel_limit() {
         let accel = 2.5;
-        let p = MotionProfile::trapezoidal(START, END, DUR, TrapezoidLimit::AccelRadS2(accel))
-            .expect("valid trapezoid");
+        let p =
+            MotionProfile::trapezoidal(START, END, DUR, TrapezoidLimit::AccelRadS2(accel)).expect("valid trapezoid");
         let dist = END - START;
         let t_a = (DUR - (DUR * DUR - 4.0 * dist / accel).sqrt()) / 2.0;
         let peak = dist / (DUR - t_a);
@@ -959,12 +816,7 @@ mod tests {
         check_midpoint(&p, START, END, DUR, peak);
         assert_close(p.sample(t_a).rate_rad_s, peak, 1e-12 * peak, "rate at f T");
         assert!(p.sample(t_a * (1.0 - 1e-6)).rate_rad_s < peak);
-        assert_close(
-            p.sample(t_a * (1.0 - 1e-6)).accel_rad_s2,
-            accel,
-            1e-12 * accel,
-            "accel",
-        );
+        assert_close(p.sample(t_a * (1.0 - 1e-6)).accel_rad_s2, accel, 1e-12 * accel, "accel");
         assert_eq!(p.sample(t_a * (1.0 + 1e-6)).accel_rad_s2, 0.0);
         assert_close(p.peak_accel_rad_s2(), accel, 1e-12 * accel, "peak accel");
         assert!(max_abs(&p, DUR, |s| s.accel_rad_s2) <= accel * (1.0 + 1e-12));
@@ -982,8 +834,7 @@ mod tests {
         check_ends(&p, START, END, DUR, 0.0);
         check_midpoint(&p, START, END, DUR, peak);
         let triangle =
-            MotionProfile::trapezoidal(START, END, DUR, TrapezoidLimit::RampFraction(0.5))
-                .expect("triangle");
+            MotionProfile::trapezoidal(START, END, DUR, TrapezoidLimit::RampFraction(0.5)).expect("triangle");
         check_ends(&triangle, START, END, DUR, 0.0);
         check_midpoint(&triangle, START, END, DUR, peak);
         assert_eq!(triangle.sample(0.5 * DUR).accel_rad_s2, -accel);
@@ -1000,29 +851,20 @@ mod tests {
             assert!(s.jerk_rad_s3.abs() <= jerk * (1.0 + 1e-9), "jerk at {t}");
             if let Some(prev) = previous {
                 let step = (s.accel_rad_s2 - prev).abs();
-                assert!(
-                    step <= jerk * dt * (1.0 + 1e-9) + 1e-12 * accel,
-                    "accel jump at {t}"
-                );
+                assert!(step <= jerk * dt * (1.0 + 1e-9) + 1e-12 * accel, "accel jump at {t}");
             }
             previous = Some(s.accel_rad_s2);
         }
         // The grid of `max_abs` may miss an isolated peak by half a step.
         let grid = 1.1 * DUR / 100_000.0;
         let reached = max_abs(p, DUR, |s| s.accel_rad_s2);
-        assert!(
-            reached >= accel - jerk * grid,
-            "peak accel reached: {reached} vs {accel}"
-        );
+        assert!(reached >= accel - jerk * grid, "peak accel reached: {reached} vs {accel}");
     }
 
     #[test]
     fn s_curve_with_accel_and_jerk_limits() {
         let (accel, jerk) = (2.5, 20.0);
-        let limit = SCurveLimit::AccelJerk {
-            accel_rad_s2: accel,
-            jerk_rad_s3: jerk,
-        };
+        let limit = SCurveLimit::AccelJerk { accel_rad_s2: accel, jerk_rad_s3: jerk };
         let p = MotionProfile::s_curve(START, END, DUR, limit).expect("valid s-curve");
         let dist = END - START;
         let t_j = accel / jerk;
@@ -1036,26 +878,11 @@ mod tests {
         assert_eq!(p.peak_jerk_rad_s3(), jerk);
         assert_close(p.peak_rate_rad_s(), peak, 1e-12 * peak, "peak rate");
         assert_close(p.sample(t_a).rate_rad_s, peak, 1e-10 * peak, "rate at t_a");
-        assert_close(
-            p.sample(0.5 * t_a).accel_rad_s2,
-            accel,
-            1e-12 * accel,
-            "const accel",
-        );
+        assert_close(p.sample(0.5 * t_a).accel_rad_s2, accel, 1e-12 * accel, "const accel");
         assert_eq!(p.sample(0.5 * t_j).jerk_rad_s3, jerk);
         assert_eq!(p.sample(DUR - 0.5 * t_j).jerk_rad_s3, jerk);
         assert_eq!(p.sample(DUR - t_a + 0.5 * t_j).jerk_rad_s3, -jerk);
-        let boundaries = [
-            0.0,
-            t_j,
-            t_a - t_j,
-            t_a,
-            0.5 * DUR,
-            DUR - t_a,
-            DUR - t_a + t_j,
-            DUR - t_j,
-            DUR,
-        ];
+        let boundaries = [0.0, t_j, t_a - t_j, t_a, 0.5 * DUR, DUR - t_a, DUR - t_a + t_j, DUR - t_j, DUR];
         check_derivatives(&p, DUR, &boundaries, [peak, accel, jerk]);
         assert_eq!(p.name(), "s-curve");
     }
@@ -1063,10 +890,7 @@ mod tests {
     #[test]
     fn s_curve_with_fractions() {
         let (ramp, jerk_fraction) = (0.4, 0.25);
-        let limit = SCurveLimit::Fractions {
-            ramp_fraction: ramp,
-            jerk_fraction,
-        };
+        let limit = SCurveLimit::Fractions { ramp_fraction: ramp, jerk_fraction };
         let p = MotionProfile::s_curve(START, END, DUR, limit).expect("valid s-curve");
         let t_a = ramp * DUR;
         let t_j = jerk_fraction * t_a;
@@ -1077,26 +901,13 @@ mod tests {
         check_midpoint(&p, START, END, DUR, peak);
         check_s_curve_limits(&p, accel, jerk);
         assert_close(p.sample(t_a).rate_rad_s, peak, 1e-12 * peak, "rate at t_a");
-        let boundaries = [
-            0.0,
-            t_j,
-            t_a - t_j,
-            t_a,
-            0.5 * DUR,
-            DUR - t_a,
-            DUR - t_a + t_j,
-            DUR - t_j,
-            DUR,
-        ];
+        let boundaries = [0.0, t_j, t_a - t_j, t_a, 0.5 * DUR, DUR - t_a, DUR - t_a + t_j, DUR - t_j, DUR];
         check_derivatives(&p, DUR, &boundaries, [peak, accel, jerk]);
     }
 
     #[test]
     fn pure_jerk_s_curve_needs_minimum_jerk() {
-        let limit = SCurveLimit::Fractions {
-            ramp_fraction: 0.5,
-            jerk_fraction: 0.5,
-        };
+        let limit = SCurveLimit::Fractions { ramp_fraction: 0.5, jerk_fraction: 0.5 };
         let p = MotionProfile::s_curve(START, END, DUR, limit).expect("valid s-curve");
         let dist = END - START;
         let jerk_min = 32.0 * dist / (DUR * DUR * DUR);
@@ -1104,95 +915,49 @@ mod tests {
         check_ends(&p, START, END, DUR, 0.0);
         check_midpoint(&p, START, END, DUR, 2.0 * dist / DUR);
         check_s_curve_limits(&p, accel, jerk_min);
-        assert_close(
-            p.peak_jerk_rad_s3(),
-            jerk_min,
-            1e-12 * jerk_min,
-            "peak jerk",
-        );
-        assert_close(
-            p.sample(0.25 * DUR).accel_rad_s2,
-            accel,
-            1e-12 * accel,
-            "accel at T/4",
-        );
+        assert_close(p.peak_jerk_rad_s3(), jerk_min, 1e-12 * jerk_min, "peak jerk");
+        assert_close(p.sample(0.25 * DUR).accel_rad_s2, accel, 1e-12 * accel, "accel at T/4");
     }
 
     #[test]
     fn s_curve_feasibility_bounds_are_reported_and_tight() {
         let dist = END - START;
         // Jerk too small for any accel: j >= 32|Δ|/T³.
-        let too_little_jerk = SCurveLimit::AccelJerk {
-            accel_rad_s2: 2.5,
-            jerk_rad_s3: 5.0,
-        };
+        let too_little_jerk = SCurveLimit::AccelJerk { accel_rad_s2: 2.5, jerk_rad_s3: 5.0 };
         let jerk_min = 32.0 * dist / DUR.powi(3);
         let bound = allowed_bound(MotionProfile::s_curve(START, END, DUR, too_little_jerk));
         assert_close(bound, jerk_min, 1e-12 * jerk_min, "minimum jerk");
 
         // Accel too small for this jerk.
         let jerk = 100.0;
-        let accel_min =
-            jerk * (DUR / 2.0 - (DUR * DUR / 4.0 - 8.0 * dist / (jerk * DUR)).sqrt()) / 2.0;
-        let low = SCurveLimit::AccelJerk {
-            accel_rad_s2: 1.4,
-            jerk_rad_s3: jerk,
-        };
+        let accel_min = jerk * (DUR / 2.0 - (DUR * DUR / 4.0 - 8.0 * dist / (jerk * DUR)).sqrt()) / 2.0;
+        let low = SCurveLimit::AccelJerk { accel_rad_s2: 1.4, jerk_rad_s3: jerk };
         let bound = allowed_bound(MotionProfile::s_curve(START, END, DUR, low));
         assert_close(bound, accel_min, 1e-9 * accel_min, "minimum accel");
-        let just_enough = SCurveLimit::AccelJerk {
-            accel_rad_s2: accel_min * (1.0 + 1e-6),
-            jerk_rad_s3: jerk,
-        };
+        let just_enough = SCurveLimit::AccelJerk { accel_rad_s2: accel_min * (1.0 + 1e-6), jerk_rad_s3: jerk };
         let p = MotionProfile::s_curve(START, END, DUR, just_enough).expect("feasible");
         check_ends(&p, START, END, DUR, 0.0);
-        assert_close(
-            p.peak_rate_rad_s(),
-            2.0 * dist / DUR,
-            1e-3,
-            "near-triangular peak rate",
-        );
+        assert_close(p.peak_rate_rad_s(), 2.0 * dist / DUR, 1e-3, "near-triangular peak rate");
 
         // Accel so large that the jerk ramps do not fit: j >= a / t_j,max.
         let accel = 100.0;
         let t_j_max = (DUR - (DUR * DUR - 8.0 * dist / accel).sqrt()) / 4.0;
         let jerk_needed = accel / t_j_max;
-        let short = SCurveLimit::AccelJerk {
-            accel_rad_s2: accel,
-            jerk_rad_s3: 200.0,
-        };
+        let short = SCurveLimit::AccelJerk { accel_rad_s2: accel, jerk_rad_s3: 200.0 };
         let bound = allowed_bound(MotionProfile::s_curve(START, END, DUR, short));
-        assert_close(
-            bound,
-            jerk_needed,
-            1e-9 * jerk_needed,
-            "jerk to reach accel",
-        );
-        let fits = SCurveLimit::AccelJerk {
-            accel_rad_s2: accel,
-            jerk_rad_s3: jerk_needed * (1.0 + 1e-6),
-        };
+        assert_close(bound, jerk_needed, 1e-9 * jerk_needed, "jerk to reach accel");
+        let fits = SCurveLimit::AccelJerk { accel_rad_s2: accel, jerk_rad_s3: jerk_needed * (1.0 + 1e-6) };
         let p = MotionProfile::s_curve(START, END, DUR, fits).expect("feasible");
         check_ends(&p, START, END, DUR, 0.0);
         let t_j = accel / (jerk_needed * (1.0 + 1e-6));
-        assert_close(
-            p.sample(t_j).accel_rad_s2,
-            accel,
-            1e-9 * accel,
-            "accel peak reached",
-        );
+        assert_close(p.sample(t_j).accel_rad_s2, accel, 1e-9 * accel, "accel peak reached");
     }
 
     #[test]
     fn trapezoid_minimum_accel_is_reported() {
         let result = MotionProfile::trapezoidal(START, END, DUR, TrapezoidLimit::AccelRadS2(1.0));
         let expected = 4.0 * (END - START) / (DUR * DUR);
-        assert_close(
-            allowed_bound(result),
-            expected,
-            1e-12 * expected,
-            "minimum accel",
-        );
+        assert_close(allowed_bound(result), expected, 1e-12 * expected, "minimum accel");
     }
 
     #[test]
@@ -1200,10 +965,7 @@ mod tests {
         let (start, rate, ramp) = (0.4, 3.0, 1.5);
         let p = MotionProfile::spin_up(start, rate, ramp).expect("valid spin-up");
         let s0 = p.sample(0.0);
-        assert_eq!(
-            (s0.angle_rad, s0.rate_rad_s, s0.accel_rad_s2),
-            (start, 0.0, 0.0)
-        );
+        assert_eq!((s0.angle_rad, s0.rate_rad_s, s0.accel_rad_s2), (start, 0.0, 0.0));
         let before = p.sample(-1.0);
         assert_eq!((before.angle_rad, before.rate_rad_s), (start, 0.0));
         // Half way: θ = w Ts/8 − w Ts/(2π²), rate w/2, accel 2w/Ts (peak).
@@ -1214,50 +976,20 @@ mod tests {
         assert_close(half.accel_rad_s2, 2.0 * rate / ramp, 1e-12, "accel at Ts/2");
         // At and just before Ts.
         let at = p.sample(ramp);
-        assert_close(
-            at.angle_rad,
-            start + 0.5 * rate * ramp,
-            1e-12,
-            "angle at Ts",
-        );
+        assert_close(at.angle_rad, start + 0.5 * rate * ramp, 1e-12, "angle at Ts");
         assert_eq!((at.rate_rad_s, at.accel_rad_s2), (rate, 0.0));
         let near = p.sample(ramp * (1.0 - 1e-9));
-        assert_close(
-            near.angle_rad,
-            start + 0.5 * rate * ramp,
-            1e-8,
-            "angle before Ts",
-        );
+        assert_close(near.angle_rad, start + 0.5 * rate * ramp, 1e-8, "angle before Ts");
         assert_close(near.rate_rad_s, rate, 1e-8 * rate, "rate before Ts");
-        assert_close(
-            near.accel_rad_s2,
-            0.0,
-            1e-6 * rate / ramp,
-            "accel before Ts",
-        );
-        assert_close(
-            near.jerk_rad_s3,
-            0.0,
-            1e-6 * rate / (ramp * ramp),
-            "jerk before Ts",
-        );
+        assert_close(near.accel_rad_s2, 0.0, 1e-6 * rate / ramp, "accel before Ts");
+        assert_close(near.jerk_rad_s3, 0.0, 1e-6 * rate / (ramp * ramp), "jerk before Ts");
         let later = p.sample(ramp + 2.0);
-        assert_close(
-            later.angle_rad,
-            start + rate * (ramp + 2.0 - 0.5 * ramp),
-            1e-12,
-            "cruise",
-        );
+        assert_close(later.angle_rad, start + rate * (ramp + 2.0 - 0.5 * ramp), 1e-12, "cruise");
         assert_eq!(later.rate_rad_s, rate);
         assert_close(p.end_rad(), start + 0.5 * rate * ramp, 1e-12, "end_rad()");
         assert_eq!(p.duration_s(), ramp);
         assert_eq!(p.peak_rate_rad_s(), rate);
-        assert_close(
-            p.peak_accel_rad_s2(),
-            2.0 * rate / ramp,
-            1e-12,
-            "peak accel",
-        );
+        assert_close(p.peak_accel_rad_s2(), 2.0 * rate / ramp, 1e-12, "peak accel");
         let jerk = 2.0 * PI * rate / (ramp * ramp);
         assert_close(p.peak_jerk_rad_s3(), jerk, 1e-12 * jerk, "peak jerk");
         assert!(p.rate_jumps().is_empty());
@@ -1272,10 +1004,7 @@ mod tests {
         for t in [-1.0, 0.0, 0.5, 100.0] {
             assert_eq!(p.sample(t), DriveState::at_rest(0.7));
         }
-        assert_eq!(
-            (p.start_rad(), p.end_rad(), p.duration_s()),
-            (0.7, 0.7, 0.0)
-        );
+        assert_eq!((p.start_rad(), p.end_rad(), p.duration_s()), (0.7, 0.7, 0.0));
         assert_eq!(p.peak_rate_rad_s(), 0.0);
         assert_eq!(p.peak_jerk_rad_s3(), 0.0);
         assert!(p.rate_jumps().is_empty());
@@ -1291,17 +1020,11 @@ mod tests {
             |a, b| MotionProfile::uniform(a, b, DUR),
             |a, b| MotionProfile::trapezoidal(a, b, DUR, TrapezoidLimit::AccelRadS2(2.5)),
             |a, b| {
-                let limit = SCurveLimit::AccelJerk {
-                    accel_rad_s2: 2.5,
-                    jerk_rad_s3: 20.0,
-                };
+                let limit = SCurveLimit::AccelJerk { accel_rad_s2: 2.5, jerk_rad_s3: 20.0 };
                 MotionProfile::s_curve(a, b, DUR, limit)
             },
             |a, b| {
-                let limit = SCurveLimit::Fractions {
-                    ramp_fraction: 0.3,
-                    jerk_fraction: 0.2,
-                };
+                let limit = SCurveLimit::Fractions { ramp_fraction: 0.3, jerk_fraction: 0.2 };
                 MotionProfile::s_curve(a, b, DUR, limit)
             },
         ];
@@ -1311,12 +1034,7 @@ mod tests {
             check_ends(&down, pivot, down_end, DUR, down.sample(0.0).rate_rad_s);
             check_mirror(&up, &down, pivot, DUR);
             let peak = up.peak_rate_rad_s();
-            assert_close(
-                down.peak_rate_rad_s(),
-                peak,
-                1e-12 * peak,
-                "mirrored peak rate",
-            );
+            assert_close(down.peak_rate_rad_s(), peak, 1e-12 * peak, "mirrored peak rate");
         }
         let up = MotionProfile::spin_up(pivot, 3.0, 1.5).expect("spin-up");
         let down = MotionProfile::spin_up(pivot, -3.0, 1.5).expect("spin-down");
@@ -1326,14 +1044,8 @@ mod tests {
     #[test]
     fn invalid_inputs_are_rejected_by_name() {
         let nan = f64::NAN;
-        let accel_jerk = |accel_rad_s2, jerk_rad_s3| SCurveLimit::AccelJerk {
-            accel_rad_s2,
-            jerk_rad_s3,
-        };
-        let fractions = |ramp_fraction, jerk_fraction| SCurveLimit::Fractions {
-            ramp_fraction,
-            jerk_fraction,
-        };
+        let accel_jerk = |accel_rad_s2, jerk_rad_s3| SCurveLimit::AccelJerk { accel_rad_s2, jerk_rad_s3 };
+        let fractions = |ramp_fraction, jerk_fraction| SCurveLimit::Fractions { ramp_fraction, jerk_fraction };
         let trap = |limit| MotionProfile::trapezoidal(START, END, DUR, limit);
         let scurve = |limit| MotionProfile::s_curve(START, END, DUR, limit);
         let cases = [
@@ -1349,10 +1061,7 @@ mod tests {
             (trap(TrapezoidLimit::RampFraction(0.0)), "ramp_fraction"),
             (trap(TrapezoidLimit::RampFraction(0.6)), "ramp_fraction"),
             (trap(TrapezoidLimit::RampFraction(nan)), "ramp_fraction"),
-            (
-                MotionProfile::trapezoidal(START, END, 0.0, TrapezoidLimit::RampFraction(0.2)),
-                "duration_s",
-            ),
+            (MotionProfile::trapezoidal(START, END, 0.0, TrapezoidLimit::RampFraction(0.2)), "duration_s"),
             (scurve(fractions(0.6, 0.25)), "ramp_fraction"),
             (scurve(fractions(0.4, 0.0)), "jerk_fraction"),
             (scurve(fractions(0.4, 0.51)), "jerk_fraction"),
@@ -1365,10 +1074,7 @@ mod tests {
             (scurve(accel_jerk(100.0, 200.0)), "jerk_rad_s3"),
             (MotionProfile::spin_up(0.0, nan, 1.0), "final_rate_rad_s"),
             (MotionProfile::spin_up(0.0, 1.0, 0.0), "ramp_time_s"),
-            (
-                MotionProfile::spin_up(0.0, 1.0, f64::INFINITY),
-                "ramp_time_s",
-            ),
+            (MotionProfile::spin_up(0.0, 1.0, f64::INFINITY), "ramp_time_s"),
             (MotionProfile::spin_up(nan, 1.0, 1.0), "start_rad"),
         ];
         for (i, (result, expected)) in cases.into_iter().enumerate() {

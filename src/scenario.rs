@@ -11,9 +11,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive};
-use crate::beam::{
-    BeamError, BeamModel, BeamSpec, ConcentratedMass, Material, SectionShape, Segment,
-};
+use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, Material, SectionShape, Segment};
 use crate::drive::{DriveError, MotionProfile, SCurveLimit, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
 
@@ -22,20 +20,13 @@ use crate::integrate::IntegratorKind;
 pub enum ScenarioError {
     /// The file could not be read.
     #[error("{path}: cannot read: {source}")]
-    Io {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    Io { path: PathBuf, source: std::io::Error },
     /// TOML syntax, an unknown key, a missing key or a wrong type.
     #[error("{path}: {message}")]
     Parse { path: PathBuf, message: String },
     /// A value outside its allowed range.
     #[error("{path}: key `{key}`: {message}")]
-    Invalid {
-        path: PathBuf,
-        key: String,
-        message: String,
-    },
+    Invalid { path: PathBuf, key: String, message: String },
 }
 
 /// A scenario as written in its file.
@@ -90,19 +81,9 @@ pub struct SegmentSpec {
 #[serde(tag = "profile", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum DriveSpec {
     /// Constant rate from start to end.
-    Uniform {
-        start_deg: f64,
-        end_deg: f64,
-        duration_s: f64,
-    },
+    Uniform { start_deg: f64, end_deg: f64, duration_s: f64 },
     /// Accel-limited: give `accel_deg_s2` or `ramp_fraction` (accel phase / duration).
-    Trapezoidal {
-        start_deg: f64,
-        end_deg: f64,
-        duration_s: f64,
-        accel_deg_s2: Option<f64>,
-        ramp_fraction: Option<f64>,
-    },
+    Trapezoidal { start_deg: f64, end_deg: f64, duration_s: f64, accel_deg_s2: Option<f64>, ramp_fraction: Option<f64> },
     /// Jerk-limited 7 segments: give `accel_deg_s2` + `jerk_deg_s3`, or `ramp_fraction` +
     /// `jerk_fraction`.
     SCurve {
@@ -131,14 +112,9 @@ pub struct TimeSpec {
 impl Scenario {
     /// Reads and checks a scenario file.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-            path: path.into(),
-            source,
-        })?;
-        let scenario: Scenario = toml::from_str(&text).map_err(|e| ScenarioError::Parse {
-            path: path.into(),
-            message: e.to_string(),
-        })?;
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
+        let scenario: Scenario =
+            toml::from_str(&text).map_err(|e| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
         scenario.validate(path)?;
         Ok(scenario)
     }
@@ -147,23 +123,13 @@ impl Scenario {
     pub fn validate(&self, path: &Path) -> Result<(), ScenarioError> {
         self.beam_spec().map_err(|e| beam_error(path, e))?;
         self.motion().map_err(|e| drive_error(path, e))?;
-        self.integrator
-            .build()
-            .map_err(|e| invalid(path, "integrator", e.to_string()))?;
+        self.integrator.build().map_err(|e| invalid(path, "integrator", e.to_string()))?;
         let t = self.time;
         if !(t.step_s.is_finite() && t.step_s > 0.0 && t.step_s <= 1.0) {
-            return Err(invalid(
-                path,
-                "time.step_s",
-                format!("{} is outside 0 < step_s <= 1", t.step_s),
-            ));
+            return Err(invalid(path, "time.step_s", format!("{} is outside 0 < step_s <= 1", t.step_s)));
         }
         if !(t.settle_s.is_finite() && t.settle_s >= 0.0) {
-            return Err(invalid(
-                path,
-                "time.settle_s",
-                format!("{} is outside settle_s >= 0", t.settle_s),
-            ));
+            return Err(invalid(path, "time.settle_s", format!("{} is outside settle_s >= 0", t.settle_s)));
         }
         Ok(())
     }
@@ -176,22 +142,14 @@ impl Scenario {
             .iter()
             .map(|s| Segment::from_shape(s.length_m, &s.section, &s.material))
             .collect::<Result<Vec<_>, _>>()?;
-        let spec = BeamSpec {
-            segments,
-            masses: self.arm.masses.clone(),
-            elements: self.arm.elements,
-        };
+        let spec = BeamSpec { segments, masses: self.arm.masses.clone(), elements: self.arm.elements };
         spec.validate()?;
         Ok(spec)
     }
 
     /// The arm model at the scenario's fidelity.
     pub fn arm_model(&self, fidelity: Fidelity) -> Result<ArmModel, ArmError> {
-        ArmModel::new(
-            BeamModel::new(self.beam_spec()?)?,
-            fidelity,
-            self.arm.options.clone(),
-        )
+        ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm.options.clone())
     }
 
     /// The hub motion in radians.
@@ -215,18 +173,10 @@ impl DriveSpec {
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
         let r = f64::to_radians;
         match *self {
-            DriveSpec::Uniform {
-                start_deg,
-                end_deg,
-                duration_s,
-            } => MotionProfile::uniform(r(start_deg), r(end_deg), duration_s),
-            DriveSpec::Trapezoidal {
-                start_deg,
-                end_deg,
-                duration_s,
-                accel_deg_s2,
-                ramp_fraction,
-            } => {
+            DriveSpec::Uniform { start_deg, end_deg, duration_s } => {
+                MotionProfile::uniform(r(start_deg), r(end_deg), duration_s)
+            }
+            DriveSpec::Trapezoidal { start_deg, end_deg, duration_s, accel_deg_s2, ramp_fraction } => {
                 let limit = match (accel_deg_s2, ramp_fraction) {
                     (Some(a), None) => TrapezoidLimit::AccelRadS2(r(a)),
                     (None, Some(f)) => TrapezoidLimit::RampFraction(f),
@@ -244,18 +194,10 @@ impl DriveSpec {
                 jerk_fraction,
             } => {
                 let limit = match (accel_deg_s2, jerk_deg_s3, ramp_fraction, jerk_fraction) {
-                    (Some(a), Some(j), None, None) => SCurveLimit::AccelJerk {
-                        accel_rad_s2: r(a),
-                        jerk_rad_s3: r(j),
-                    },
-                    (None, None, Some(f), Some(jf)) => SCurveLimit::Fractions {
-                        ramp_fraction: f,
-                        jerk_fraction: jf,
-                    },
+                    (Some(a), Some(j), None, None) => SCurveLimit::AccelJerk { accel_rad_s2: r(a), jerk_rad_s3: r(j) },
+                    (None, None, Some(f), Some(jf)) => SCurveLimit::Fractions { ramp_fraction: f, jerk_fraction: jf },
                     _ => {
-                        return Err(either(
-                            "accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction",
-                        ));
+                        return Err(either("accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction"));
                     }
                 };
                 MotionProfile::s_curve(r(start_deg), r(end_deg), duration_s, limit)
@@ -266,26 +208,16 @@ impl DriveSpec {
 }
 
 fn either(allowed: &str) -> DriveError {
-    DriveError::InvalidParameter {
-        name: "limit",
-        value: f64::NAN,
-        allowed: format!("exactly one of: {allowed}"),
-    }
+    DriveError::InvalidParameter { name: "limit", value: f64::NAN, allowed: format!("exactly one of: {allowed}") }
 }
 
 fn invalid(path: &Path, key: &str, message: String) -> ScenarioError {
-    ScenarioError::Invalid {
-        path: path.into(),
-        key: key.into(),
-        message,
-    }
+    ScenarioError::Invalid { path: path.into(), key: key.into(), message }
 }
 
 fn beam_error(path: &Path, e: BeamError) -> ScenarioError {
     match e {
-        BeamError::InvalidParameter { ref name, .. } => {
-            invalid(path, &format!("arm.{name}"), e.to_string())
-        }
+        BeamError::InvalidParameter { ref name, .. } => invalid(path, &format!("arm.{name}"), e.to_string()),
         other => invalid(path, "arm", other.to_string()),
     }
 }

@@ -10,17 +10,10 @@ use pipearm::drive::MotionProfile;
 use pipearm::integrate::IntegratorKind;
 
 fn undamped(gravity_m_s2: f64) -> ArmOptions {
-    ArmOptions {
-        damping_ratios: vec![0.0],
-        gravity_m_s2,
-        ..ArmOptions::default()
-    }
+    ArmOptions { damping_ratios: vec![0.0], gravity_m_s2, ..ArmOptions::default() }
 }
 
-const NEWMARK: IntegratorKind = IntegratorKind::Newmark {
-    beta: 0.25,
-    gamma: 0.5,
-};
+const NEWMARK: IntegratorKind = IntegratorKind::Newmark { beta: 0.25, gamma: 0.5 };
 
 #[test]
 fn newmark_free_vibration_conserves_energy_over_1000_periods() {
@@ -60,32 +53,13 @@ fn free_hub_conserves_angular_momentum_and_rings_at_the_pinned_free_frequency() 
     let (l, ei, rho_a, gamma) = (2.0_f64, 800.0, 3.0, 0.5);
     let hub_inertia_kg_m2 = gamma * rho_a * l.powi(3);
     let beam = model(uniform(l, ei, rho_a, 12));
-    let shape = beam
-        .modes_free_hub(hub_inertia_kg_m2)
-        .unwrap()
-        .shapes
-        .column(0)
-        .into_owned();
+    let shape = beam.modes_free_hub(hub_inertia_kg_m2).unwrap().shapes.column(0).into_owned();
     let [_, tip, _] = beam.point_rows(l);
     let q0 = 0.02 / tip.dot(&shape) * shape;
-    let arm = ArmModel::new(
-        beam,
-        Fidelity::Fe,
-        ArmOptions {
-            hub_inertia_kg_m2,
-            ..undamped(0.0)
-        },
-    )
-    .unwrap();
+    let arm = ArmModel::new(beam, Fidelity::Fe, ArmOptions { hub_inertia_kg_m2, ..undamped(0.0) }).unwrap();
     let n = arm.elastic_dofs();
-    let mut sim = ArmSimulation::with_initial(
-        arm,
-        HubDrive::Free { torque_n_m: 0.0 },
-        NEWMARK,
-        q0,
-        DVector::zeros(n),
-    )
-    .unwrap();
+    let mut sim =
+        ArmSimulation::with_initial(arm, HubDrive::Free { torque_n_m: 0.0 }, NEWMARK, q0, DVector::zeros(n)).unwrap();
     let exact_omega = common::hub_inertia_lambda(gamma).powi(2) * (ei / (rho_a * l.powi(4))).sqrt();
     let period = std::f64::consts::TAU / exact_omega;
     let h = period / 200.0;
@@ -100,15 +74,9 @@ fn free_hub_conserves_angular_momentum_and_rings_at_the_pinned_free_frequency() 
         momentum_scale = momentum_scale.max(sim.arm.pivot_inertia_kg_m2 * s.v[0].abs());
     }
     // H = 0 initially; the trapezoidal rule keeps it to second order in h, not exactly.
-    assert!(
-        worst_momentum < 1e-4 * momentum_scale,
-        "angular momentum {worst_momentum} vs scale {momentum_scale}"
-    );
+    assert!(worst_momentum < 1e-4 * momentum_scale, "angular momentum {worst_momentum} vs scale {momentum_scale}");
     let measured = std::f64::consts::TAU * pipearm::analysis::crossing_frequency_hz(&theta);
-    assert!(
-        rel(measured, exact_omega) < 5e-3,
-        "{measured} vs {exact_omega}"
-    );
+    assert!(rel(measured, exact_omega) < 5e-3, "{measured} vs {exact_omega}");
     let drift = (sim.sample().energies.total_j() / e0 - 1.0).abs();
     assert!(drift < 1e-3, "energy drift {drift}");
 }
@@ -129,11 +97,7 @@ fn angular_momentum(sim: &ArmSimulation) -> f64 {
 
 fn kinetic(sim: &ArmSimulation, state: &pipearm::integrate::State) -> f64 {
     let load = GeneralizedLoad::zero(sim.arm.elastic_dofs());
-    let system = pipearm::arm::ArmSystem {
-        arm: &sim.arm,
-        drive: &sim.drive,
-        load: &load,
-    };
+    let system = pipearm::arm::ArmSystem { arm: &sim.arm, drive: &sim.drive, load: &load };
     let (hub, q, qd) = system.split(state.t, &state.x, &state.v);
     system.energies(&hub, &q, &qd).kinetic_j
 }
@@ -142,10 +106,7 @@ fn kinetic(sim: &ArmSimulation, state: &pipearm::integrate::State) -> f64 {
 fn rigid_arm_under_constant_torque_follows_the_closed_form() {
     let beam = model(uniform(3.0, 1e6, 10.0, 6).with_mass("tip", 3.0, 20.0, 0.0));
     let inertia = 10.0 * 27.0 / 3.0 + 20.0 * 9.0 + 5.0;
-    let options = ArmOptions {
-        hub_inertia_kg_m2: 5.0,
-        ..undamped(0.0)
-    };
+    let options = ArmOptions { hub_inertia_kg_m2: 5.0, ..undamped(0.0) };
     let arm = ArmModel::new(beam, Fidelity::Rigid, options).unwrap();
     let torque = 250.0;
     let mut sim = ArmSimulation::new(arm, HubDrive::Free { torque_n_m: torque }, NEWMARK).unwrap();
@@ -159,28 +120,12 @@ fn rigid_arm_under_constant_torque_follows_the_closed_form() {
 fn rigid_arm_drive_torque_is_inertia_plus_gravity() {
     // τ = J θ̈ + g m₁ cos θ for a rigid arm.
     let beam = model(uniform(3.0, 1e6, 10.0, 6).with_mass("tip", 3.0, 20.0, 0.5));
-    let (inertia, first_moment) = (
-        10.0 * 27.0 / 3.0 + 20.0 * 9.0 + 0.5 + 5.0,
-        10.0 * 4.5 + 60.0,
-    );
-    let options = ArmOptions {
-        hub_inertia_kg_m2: 5.0,
-        ..ArmOptions::default()
-    };
+    let (inertia, first_moment) = (10.0 * 27.0 / 3.0 + 20.0 * 9.0 + 0.5 + 5.0, 10.0 * 4.5 + 60.0);
+    let options = ArmOptions { hub_inertia_kg_m2: 5.0, ..ArmOptions::default() };
     let arm = ArmModel::new(beam, Fidelity::Rigid, options).unwrap();
-    let profile = MotionProfile::trapezoidal(
-        0.0,
-        1.5,
-        4.0,
-        pipearm::drive::TrapezoidLimit::RampFraction(0.25),
-    )
-    .unwrap();
-    let mut sim = ArmSimulation::new(
-        arm,
-        HubDrive::Prescribed(profile),
-        IntegratorKind::default(),
-    )
-    .unwrap();
+    let profile =
+        MotionProfile::trapezoidal(0.0, 1.5, 4.0, pipearm::drive::TrapezoidLimit::RampFraction(0.25)).unwrap();
+    let mut sim = ArmSimulation::new(arm, HubDrive::Prescribed(profile), IntegratorKind::default()).unwrap();
     sim.run_until(4.0, 0.01, |s| {
         let exact = inertia * s.hub.accel_rad_s2 + 9.80665 * first_moment * s.hub.angle_rad.cos();
         assert!(

@@ -28,12 +28,8 @@ fn clamped_free_with_tip_mass_matches_characteristic_equation() {
 
 #[test]
 fn clamped_free_with_tip_mass_and_inertia_matches_characteristic_equation() {
-    for (j, exact) in [
-        (0.01, [1.24245, 3.63862, 5.66300]),
-        (0.1, [1.19567, 2.50506, 4.97510]),
-    ] {
-        let beam =
-            model(uniform(2.0, 3.0, 1.5, 24).with_mass("tip", 2.0, 1.0 * 1.5 * 2.0, j * 1.5 * 8.0));
+    for (j, exact) in [(0.01, [1.24245, 3.63862, 5.66300]), (0.1, [1.19567, 2.50506, 4.97510])] {
+        let beam = model(uniform(2.0, 3.0, 1.5, 24).with_mass("tip", 2.0, 1.0 * 1.5 * 2.0, j * 1.5 * 8.0));
         let got = lambdas(&beam.modes().unwrap().omegas_rad_s, 2.0, 3.0, 1.5, 3);
         for (g, e) in got.iter().zip(exact) {
             assert!(rel(*g, e) < 1e-3, "j = {j}: lambda {g} vs exact {e}");
@@ -43,47 +39,23 @@ fn clamped_free_with_tip_mass_and_inertia_matches_characteristic_equation() {
 
 #[test]
 fn free_hub_without_inertia_is_the_pinned_free_beam() {
-    for (mu, exact) in [
-        (0.0, [3.92660, 7.06858, 10.21018]),
-        (1.0, [3.27329, 6.35599, 9.47486]),
-    ] {
+    for (mu, exact) in [(0.0, [3.92660, 7.06858, 10.21018]), (1.0, [3.27329, 6.35599, 9.47486])] {
         let beam = model(uniform(1.0, 1.0, 1.0, 30).with_mass("tip", 1.0, mu, 0.0));
-        let got = lambdas(
-            &beam.modes_free_hub(0.0).unwrap().omegas_rad_s,
-            1.0,
-            1.0,
-            1.0,
-            3,
-        );
+        let got = lambdas(&beam.modes_free_hub(0.0).unwrap().omegas_rad_s, 1.0, 1.0, 1.0, 3);
         for (g, e) in got.iter().zip(exact) {
-            assert!(
-                rel(*g, e) < 1e-3,
-                "mu = {mu}: lambda {g} vs exact pinned-free {e}"
-            );
+            assert!(rel(*g, e) < 1e-3, "mu = {mu}: lambda {g} vs exact pinned-free {e}");
         }
     }
     // A hub of inertia J_h = γ ρAL³: the root of the hub-inertia characteristic equation.
     for gamma in [0.1, 0.5, 2.0] {
         let beam = model(uniform(1.0, 1.0, 1.0, 30));
-        let got = lambdas(
-            &beam.modes_free_hub(gamma).unwrap().omegas_rad_s,
-            1.0,
-            1.0,
-            1.0,
-            1,
-        )[0];
+        let got = lambdas(&beam.modes_free_hub(gamma).unwrap().omegas_rad_s, 1.0, 1.0, 1.0, 1)[0];
         let exact = common::hub_inertia_lambda(gamma);
         assert!(rel(got, exact) < 1e-4, "gamma {gamma}: {got} vs {exact}");
     }
     // A huge hub inertia clamps the arm again.
     let beam = model(uniform(1.0, 1.0, 1.0, 20));
-    let got = lambdas(
-        &beam.modes_free_hub(1e9).unwrap().omegas_rad_s,
-        1.0,
-        1.0,
-        1.0,
-        1,
-    );
+    let got = lambdas(&beam.modes_free_hub(1e9).unwrap().omegas_rad_s, 1.0, 1.0, 1.0, 1);
     assert!(rel(got[0], 1.87510) < 1e-4);
 }
 
@@ -92,24 +64,15 @@ fn frequency_error_converges_at_fourth_order() {
     // Third clamped-free mode: consistent Hermite elements converge as h^4 in frequency.
     let exact = 7.85476_f64.powi(2);
     let err = |n: usize| {
-        let w = model(uniform(1.0, 1.0, 1.0, n))
-            .modes()
-            .unwrap()
-            .omegas_rad_s[2];
+        let w = model(uniform(1.0, 1.0, 1.0, n)).modes().unwrap().omegas_rad_s[2];
         rel(w, exact)
     };
     let counts = [4, 8, 16];
     let errors: Vec<f64> = counts.iter().map(|&n| err(n)).collect();
-    println!(
-        "elements vs relative error of omega_3: {:?}",
-        counts.iter().zip(&errors).collect::<Vec<_>>()
-    );
+    println!("elements vs relative error of omega_3: {:?}", counts.iter().zip(&errors).collect::<Vec<_>>());
     for pair in errors.windows(2) {
         let slope = (pair[0] / pair[1]).log2();
-        assert!(
-            (3.5..=4.5).contains(&slope),
-            "convergence slope {slope}, errors {errors:?}"
-        );
+        assert!((3.5..=4.5).contains(&slope), "convergence slope {slope}, errors {errors:?}");
     }
 }
 
@@ -132,15 +95,8 @@ fn modes_are_mass_orthogonal() {
         assert!((mm[(i, i)] - 1.0).abs() < 1e-10);
         assert!((kk[(i, i)] - modes.omegas_rad_s[i].powi(2)).abs() < 1e-10 * k_scale);
         for j in 0..i {
-            assert!(
-                mm[(i, j)].abs() < 1e-10,
-                "M-orthogonality {i},{j}: {}",
-                mm[(i, j)]
-            );
-            assert!(
-                kk[(i, j)].abs() < 1e-10 * k_scale,
-                "K-orthogonality {i},{j}"
-            );
+            assert!(mm[(i, j)].abs() < 1e-10, "M-orthogonality {i},{j}: {}", mm[(i, j)]);
+            assert!(kk[(i, j)].abs() < 1e-10 * k_scale, "K-orthogonality {i},{j}");
         }
     }
 }
@@ -171,12 +127,8 @@ fn piecewise_sections_match_a_two_segment_cantilever() {
         mass_per_length_kg_m: 10.0,
     };
     let (a, l, ei1, ei2, p) = (3.0, 5.0, 4e6, 1e6, 1000.0);
-    let beam = BeamModel::new(BeamSpec {
-        segments: vec![seg(a, ei1), seg(l - a, ei2)],
-        masses: vec![],
-        elements: 10,
-    })
-    .unwrap();
+    let beam = BeamModel::new(BeamSpec { segments: vec![seg(a, ei1), seg(l - a, ei2)], masses: vec![], elements: 10 })
+        .unwrap();
     let [_, v, _] = beam.point_rows(l);
     let d = beam.static_displacement(&(p * &v)).unwrap();
     let exact = p / ei1 * (l.powi(3) - (l - a).powi(3)) / 3.0 + p / ei2 * (l - a).powi(3) / 3.0;

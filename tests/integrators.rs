@@ -2,9 +2,7 @@
 //! `shared/reference/integrators.md`.
 
 use nalgebra::{DMatrix, DVector};
-use pipearm::integrate::{
-    Dynamics, ExplicitEuler, GeneralizedAlpha, Integrator, Rk4, State, SymplecticEuler,
-};
+use pipearm::integrate::{Dynamics, ExplicitEuler, GeneralizedAlpha, Integrator, Rk4, State, SymplecticEuler};
 
 /// ẍ + ω² x = 0 with unit mass.
 struct Oscillator {
@@ -24,14 +22,7 @@ impl Dynamics for Oscillator {
     fn is_linear(&self) -> bool {
         true
     }
-    fn tangents(
-        &self,
-        _t: f64,
-        _x: &DVector<f64>,
-        _v: &DVector<f64>,
-        k: &mut DMatrix<f64>,
-        c: &mut DMatrix<f64>,
-    ) {
+    fn tangents(&self, _t: f64, _x: &DVector<f64>, _v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         k[(0, 0)] = self.omega * self.omega;
         c[(0, 0)] = 0.0;
     }
@@ -45,8 +36,7 @@ fn energy(s: &State, omega: f64) -> f64 {
 fn energy_growth(integrator: &mut dyn Integrator, omega_h: f64, steps: usize) -> f64 {
     let omega = 1.0;
     let sys = Oscillator { omega };
-    let mut s =
-        State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
+    let mut s = State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
     let e0 = energy(&s, omega);
     for _ in 0..steps {
         if integrator.step(&sys, &mut s, omega_h / omega).is_err() {
@@ -60,8 +50,7 @@ fn energy_growth(integrator: &mut dyn Integrator, omega_h: f64, steps: usize) ->
 /// for a stable step (however eccentric its discrete orbit), astronomically large past the limit.
 fn late_over_early_energy(integrator: &mut dyn Integrator, omega_h: f64) -> f64 {
     let sys = Oscillator { omega: 1.0 };
-    let mut s =
-        State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
+    let mut s = State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
     let (mut early, mut late) = (0.0_f64, 0.0_f64);
     for i in 0..4000 {
         if integrator.step(&sys, &mut s, omega_h).is_err() {
@@ -101,15 +90,8 @@ fn symplectic_euler_limit_is_omega_h_2() {
 
 #[test]
 fn linear_acceleration_newmark_limit_is_2_sqrt_3() {
-    let limit = stability_limit(
-        &|| Box::new(GeneralizedAlpha::newmark(1.0 / 6.0, 0.5).unwrap()),
-        2.0,
-        5.0,
-    );
-    assert!(
-        (limit / 12f64.sqrt() - 1.0).abs() < 0.02,
-        "measured {limit}"
-    );
+    let limit = stability_limit(&|| Box::new(GeneralizedAlpha::newmark(1.0 / 6.0, 0.5).unwrap()), 2.0, 5.0);
+    assert!((limit / 12f64.sqrt() - 1.0).abs() < 0.02, "measured {limit}");
 }
 
 #[test]
@@ -126,25 +108,15 @@ fn explicit_euler_grows_at_every_step_size() {
         // Spectral radius sqrt(1 + ω²h²) per step: energy grows by (1 + ω²h²)^steps exactly.
         let exact = (1.0 + omega_h * omega_h).powi(steps as i32);
         assert!(growth > 1.0, "ωh = {omega_h}: no growth");
-        assert!(
-            (growth / exact - 1.0).abs() < 1e-9,
-            "ωh = {omega_h}: {growth} vs {exact}"
-        );
+        assert!((growth / exact - 1.0).abs() < 1e-9, "ωh = {omega_h}: {growth} vs {exact}");
     }
 }
 
 #[test]
 fn average_acceleration_is_unconditionally_stable_and_conserves_energy() {
     for omega_h in [0.1, 1.0, 10.0, 1e3] {
-        let growth = energy_growth(
-            &mut GeneralizedAlpha::average_acceleration(),
-            omega_h,
-            10_000,
-        );
-        assert!(
-            (growth - 1.0).abs() < 1e-10,
-            "ωh = {omega_h}: energy ratio {growth}"
-        );
+        let growth = energy_growth(&mut GeneralizedAlpha::average_acceleration(), omega_h, 10_000);
+        assert!((growth - 1.0).abs() < 1e-10, "ωh = {omega_h}: energy ratio {growth}");
     }
 }
 
@@ -152,8 +124,7 @@ fn average_acceleration_is_unconditionally_stable_and_conserves_energy() {
 /// (late enough that the polynomial factor of a repeated eigenvalue no longer matters).
 fn high_frequency_radius(integrator: &mut dyn Integrator) -> f64 {
     let sys = Oscillator { omega: 1.0 };
-    let mut s =
-        State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
+    let mut s = State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
     let mut energies = Vec::new();
     for _ in 0..400 {
         integrator.step(&sys, &mut s, 1e6).unwrap();
@@ -169,18 +140,12 @@ fn high_frequency_radius(integrator: &mut dyn Integrator) -> f64 {
 fn generalized_alpha_and_hht_damp_infinite_frequencies_to_rho_inf() {
     for rho in [0.0, 0.5, 0.8, 1.0] {
         let measured = high_frequency_radius(&mut GeneralizedAlpha::chung_hulbert(rho).unwrap());
-        assert!(
-            (measured - rho).abs() < 0.01,
-            "rho_inf {rho}: measured {measured}"
-        );
+        assert!((measured - rho).abs() < 0.01, "rho_inf {rho}: measured {measured}");
     }
     for alpha in [-0.3, -0.1] {
         let rho = (1.0 + alpha) / (1.0 - alpha);
         let measured = high_frequency_radius(&mut GeneralizedAlpha::hht(alpha).unwrap());
-        assert!(
-            (measured - rho).abs() < 0.02,
-            "HHT alpha {alpha}: measured {measured} vs {rho}"
-        );
+        assert!((measured - rho).abs() < 0.02, "HHT alpha {alpha}: measured {measured} vs {rho}");
     }
 }
 
@@ -189,8 +154,7 @@ fn generalized_alpha_is_second_order() {
     // Error of x(T) against cos(ωT) after one period, halving h: ratio → 4.
     let err = |steps: usize| {
         let sys = Oscillator { omega: 1.0 };
-        let mut s =
-            State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
+        let mut s = State::consistent(&sys, 0.0, DVector::from_element(1, 1.0), DVector::zeros(1)).unwrap();
         let mut integ = GeneralizedAlpha::chung_hulbert(0.8).unwrap();
         let h = std::f64::consts::TAU / steps as f64;
         for _ in 0..steps {
@@ -200,10 +164,6 @@ fn generalized_alpha_is_second_order() {
     };
     let (e1, e2, e3) = (err(100), err(200), err(400));
     for ratio in [e1 / e2, e2 / e3] {
-        assert!(
-            (ratio.log2() - 2.0).abs() < 0.15,
-            "order {} from {e1} {e2} {e3}",
-            ratio.log2()
-        );
+        assert!((ratio.log2() - 2.0).abs() < 0.15, "order {} from {e1} {e2} {e3}", ratio.log2());
     }
 }

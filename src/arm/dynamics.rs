@@ -27,10 +27,7 @@ pub struct GeneralizedLoad {
 impl GeneralizedLoad {
     /// No load on an arm with `elastic_dofs` coordinates.
     pub fn zero(elastic_dofs: usize) -> Self {
-        GeneralizedLoad {
-            hub_torque_n_m: 0.0,
-            modal: DVector::zeros(elastic_dofs),
-        }
+        GeneralizedLoad { hub_torque_n_m: 0.0, modal: DVector::zeros(elastic_dofs) }
     }
 
     /// Adds another load.
@@ -63,12 +60,7 @@ impl ArmSystem<'_> {
             HubDrive::Prescribed(profile) => (profile.sample(t), x.clone(), v.clone()),
             HubDrive::Free { .. } => {
                 let n = self.arm.elastic_dofs();
-                let hub = DriveState {
-                    angle_rad: x[0],
-                    rate_rad_s: v[0],
-                    accel_rad_s2: 0.0,
-                    jerk_rad_s3: 0.0,
-                };
+                let hub = DriveState { angle_rad: x[0], rate_rad_s: v[0], accel_rad_s2: 0.0, jerk_rad_s3: 0.0 };
                 (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
             }
         }
@@ -76,12 +68,7 @@ impl ArmSystem<'_> {
 
     /// Elastic generalized forces without the θ̈ term:
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
-    fn elastic_forces(
-        &self,
-        hub: &DriveState,
-        q: &DVector<f64>,
-        qd: &DVector<f64>,
-    ) -> DVector<f64> {
+    fn elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> DVector<f64> {
         let a = self.arm;
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, c) = hub.angle_rad.sin_cos();
@@ -93,13 +80,7 @@ impl ArmSystem<'_> {
     }
 
     /// Hub generalized force without inertia: τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment.
-    fn hub_force(
-        &self,
-        hub: &DriveState,
-        q: &DVector<f64>,
-        qd: &DVector<f64>,
-        applied_n_m: f64,
-    ) -> f64 {
+    fn hub_force(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, applied_n_m: f64) -> f64 {
         let a = self.arm;
         let g = a.options.gravity_m_s2;
         let (s, c) = hub.angle_rad.sin_cos();
@@ -112,9 +93,7 @@ impl ArmSystem<'_> {
         let a = self.arm;
         // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
         let foreshortening = 0.5 * c * q.dot(&(&a.gravity_stiffness * q));
-        -g * c * (a.first_moment_kg_m + a.axial_mass.dot(q))
-            + g * s * a.transverse_mass.dot(q)
-            + foreshortening
+        -g * c * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * s * a.transverse_mass.dot(q) + foreshortening
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
@@ -132,29 +111,17 @@ impl ArmSystem<'_> {
     pub fn energies(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> Energies {
         let a = self.arm;
         let w = hub.rate_rad_s;
-        let kinetic_j = 0.5 * w * w * self.pivot_inertia(q)
-            + w * self.coupling(q).dot(qd)
-            + 0.5 * qd.dot(&(&a.mass * qd));
+        let kinetic_j =
+            0.5 * w * w * self.pivot_inertia(q) + w * self.coupling(q).dot(qd) + 0.5 * qd.dot(&(&a.mass * qd));
         let (s, c) = hub.angle_rad.sin_cos();
         let g = a.options.gravity_m_s2;
-        let gravity_j = g * s * (a.first_moment_kg_m + a.axial_mass.dot(q))
-            + g * c * a.transverse_mass.dot(q)
+        let gravity_j = g * s * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * c * a.transverse_mass.dot(q)
             - 0.5 * s * q.dot(&(&a.gravity_stiffness * q));
-        Energies {
-            kinetic_j,
-            strain_j: 0.5 * q.dot(&(&a.stiffness * q)),
-            gravity_j,
-        }
+        Energies { kinetic_j, strain_j: 0.5 * q.dot(&(&a.stiffness * q)), gravity_j }
     }
 
     /// Torque the drive applies to realize the hub motion, given q̈, N·m.
-    pub fn drive_torque(
-        &self,
-        hub: &DriveState,
-        q: &DVector<f64>,
-        qd: &DVector<f64>,
-        qdd: &DVector<f64>,
-    ) -> f64 {
+    pub fn drive_torque(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, qdd: &DVector<f64>) -> f64 {
         match self.drive {
             HubDrive::Free { torque_n_m } => *torque_n_m,
             HubDrive::Prescribed(_) => {
@@ -192,28 +159,18 @@ impl Dynamics for ArmSystem<'_> {
         let (hub, q, qd) = self.split(t, x, v);
         match self.drive {
             HubDrive::Prescribed(_) => {
-                f.copy_from(
-                    &(self.elastic_forces(&hub, &q, &qd) - hub.accel_rad_s2 * self.coupling(&q)),
-                );
+                f.copy_from(&(self.elastic_forces(&hub, &q, &qd) - hub.accel_rad_s2 * self.coupling(&q)));
             }
             HubDrive::Free { torque_n_m } => {
                 f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
-                f.rows_mut(1, q.len())
-                    .copy_from(&self.elastic_forces(&hub, &q, &qd));
+                f.rows_mut(1, q.len()).copy_from(&self.elastic_forces(&hub, &q, &qd));
             }
         }
     }
 
     /// Exact for a prescribed hub; for a free hub the derivative of the mass matrix is left
     /// out (a quasi-Newton iteration that converges in a few steps).
-    fn tangents(
-        &self,
-        t: f64,
-        x: &DVector<f64>,
-        v: &DVector<f64>,
-        k: &mut DMatrix<f64>,
-        c: &mut DMatrix<f64>,
-    ) {
+    fn tangents(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         let a = self.arm;
         let (hub, q, qd) = self.split(t, x, v);
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
@@ -234,15 +191,12 @@ impl Dynamics for ArmSystem<'_> {
         k.view_mut((1, 0), (n, 1)).copy_from(&k_q_theta);
         let c_q_theta = 2.0 * (&a.gyroscopic * &qd) - 2.0 * w * &spin_arm;
         c.view_mut((1, 0), (n, 1)).copy_from(&c_q_theta);
-        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + a.axial_mass.dot(&q))
-            + g * co * a.transverse_mass.dot(&q)
+        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + a.axial_mass.dot(&q)) + g * co * a.transverse_mass.dot(&q)
             - 0.5 * s * q.dot(&kg_q));
-        let k_theta_q = 2.0 * w * (&a.spin_mass * &qd) + co * (g * &a.axial_mass - &kg_q)
-            - g * s * &a.transverse_mass;
+        let k_theta_q = 2.0 * w * (&a.spin_mass * &qd) + co * (g * &a.axial_mass - &kg_q) - g * s * &a.transverse_mass;
         k.view_mut((0, 1), (1, n)).copy_from(&k_theta_q.transpose());
         c[(0, 0)] = 2.0 * spin_arm.dot(&qd);
-        c.view_mut((0, 1), (1, n))
-            .copy_from(&(2.0 * w * spin_arm).transpose());
+        c.view_mut((0, 1), (1, n)).copy_from(&(2.0 * w * spin_arm).transpose());
     }
 
     fn is_linear(&self) -> bool {

@@ -104,11 +104,7 @@ pub enum ArmError {
     Integrate(#[from] IntegrateError),
     /// An arm option outside its range.
     #[error("arm parameter `{name}` = {value} is invalid: allowed {allowed}")]
-    InvalidParameter {
-        name: String,
-        value: f64,
-        allowed: String,
-    },
+    InvalidParameter { name: String, value: f64, allowed: String },
 }
 
 /// The reduced floating-frame arm model (notation of the module doc).
@@ -164,11 +160,7 @@ impl ArmModel {
         let damping_full = modal_damping_matrix(&beam, &modes, &options.damping_ratios);
         let project = |m: &DMatrix<f64>| basis.transpose() * m * &basis;
         let project_v = |v: &DVector<f64>| basis.transpose() * v;
-        let stiffening = if options.geometric_stiffening {
-            1.0
-        } else {
-            0.0
-        };
+        let stiffening = if options.geometric_stiffening { 1.0 } else { 0.0 };
         let g = options.gravity_m_s2;
         let l = beam.length_m();
         let tip_rows = beam.point_rows(l).map(|r| project_v(&r));
@@ -177,9 +169,7 @@ impl ArmModel {
             stiffness: project(&beam.stiffness),
             damping: project(&damping_full),
             gyroscopic: project(&beam.gyroscopic),
-            spin_mass: project(
-                &(&beam.translational_mass - stiffening * &beam.centrifugal_stiffness),
-            ),
+            spin_mass: project(&(&beam.translational_mass - stiffening * &beam.centrifugal_stiffness)),
             gravity_stiffness: project(&(stiffening * g * &beam.gravity_stiffness)),
             coupling: project_v(&beam.coupling),
             axial_moment: project_v(&beam.axial_moment),
@@ -213,6 +203,24 @@ impl ArmModel {
         [u.dot(q), v.dot(q)]
     }
 
+    /// Static elastic coordinates under gravity with the hub held at `angle_rad`:
+    /// (K − g sin θ K_g) q = −g (sin θ b_u + cos θ b_v).
+    pub fn static_deflection(&self, angle_rad: f64) -> Result<DVector<f64>, ArmError> {
+        let g = self.options.gravity_m_s2;
+        let (s, c) = angle_rad.sin_cos();
+        let k = &self.stiffness - s * &self.gravity_stiffness;
+        let load = -g * (s * &self.axial_mass + c * &self.transverse_mass);
+        if load.is_empty() {
+            return Ok(load);
+        }
+        k.lu().solve(&load).ok_or_else(|| {
+            ArmError::Beam(BeamError::NotPositiveDefinite {
+                matrix: "stiffness",
+                why: format!("the arm buckles under its own weight at {:.1} deg", angle_rad.to_degrees()),
+            })
+        })
+    }
+
     /// Tip (u, v, slope) rows over q.
     pub(crate) fn tip_rows(&self) -> &[DVector<f64>; 3] {
         &self.tip_rows
@@ -221,26 +229,14 @@ impl ArmModel {
     /// Generalized forces of a force `force_n` (world X, Y, N) applied at arm station `x_m` of
     /// the deformed arm in configuration (θ, q): Q_θ is its moment about the pivot (N·m),
     /// Q_q = Φᵀ Nᵀ Rᵀ F (the virtual work of F through the elastic coordinates).
-    pub fn point_force(
-        &self,
-        x_m: f64,
-        force_n: [f64; 2],
-        theta_rad: f64,
-        q: &DVector<f64>,
-    ) -> GeneralizedLoad {
+    pub fn point_force(&self, x_m: f64, force_n: [f64; 2], theta_rad: f64, q: &DVector<f64>) -> GeneralizedLoad {
         let [u, v] = self.deflection_at(x_m, q);
         let (s, c) = theta_rad.sin_cos();
         let r_world = [c * (x_m + u) - s * v, s * (x_m + u) + c * v];
-        let f_body = [
-            c * force_n[0] + s * force_n[1],
-            -s * force_n[0] + c * force_n[1],
-        ];
+        let f_body = [c * force_n[0] + s * force_n[1], -s * force_n[0] + c * force_n[1]];
         let [nu, nv, _] = self.beam.point_rows(x_m);
         let modal = self.basis.transpose() * (f_body[0] * nu + f_body[1] * nv);
-        GeneralizedLoad {
-            hub_torque_n_m: r_world[0] * force_n[1] - r_world[1] * force_n[0],
-            modal,
-        }
+        GeneralizedLoad { hub_torque_n_m: r_world[0] * force_n[1] - r_world[1] * force_n[0], modal }
     }
 }
 
@@ -253,22 +249,14 @@ fn validate_options(o: &ArmOptions) -> Result<(), ArmError> {
     if o.damping_ratios.is_empty() {
         return Err(bad("damping_ratios", 0.0, "at least one ratio"));
     }
-    if let Some(z) = o
-        .damping_ratios
-        .iter()
-        .find(|z| !(z.is_finite() && (0.0..2.0).contains(*z)))
-    {
+    if let Some(z) = o.damping_ratios.iter().find(|z| !(z.is_finite() && (0.0..2.0).contains(*z))) {
         return Err(bad("damping_ratios", *z, "0 <= ratio < 2"));
     }
     if !(o.gravity_m_s2.is_finite() && o.gravity_m_s2 >= 0.0) {
         return Err(bad("gravity_m_s2", o.gravity_m_s2, "a finite value >= 0"));
     }
     if !(o.hub_inertia_kg_m2.is_finite() && o.hub_inertia_kg_m2 >= 0.0) {
-        return Err(bad(
-            "hub_inertia_kg_m2",
-            o.hub_inertia_kg_m2,
-            "a finite value >= 0",
-        ));
+        return Err(bad("hub_inertia_kg_m2", o.hub_inertia_kg_m2, "a finite value >= 0"));
     }
     Ok(())
 }
@@ -277,10 +265,7 @@ fn validate_options(o: &ArmOptions) -> Result<(), ArmError> {
 /// damps each kept mode at its own ζ_i and modal(n) converges to fe.
 fn modal_damping_matrix(beam: &BeamModel, modes: &ModalBasis, ratios: &[f64]) -> DMatrix<f64> {
     let zeta = |i: usize| ratios[i.min(ratios.len() - 1)];
-    let diag = DVector::from_iterator(
-        modes.len(),
-        (0..modes.len()).map(|i| 2.0 * zeta(i) * modes.omegas_rad_s[i]),
-    );
+    let diag = DVector::from_iterator(modes.len(), (0..modes.len()).map(|i| 2.0 * zeta(i) * modes.omegas_rad_s[i]));
     let m_phi = &beam.mass * &modes.shapes;
     &m_phi * DMatrix::from_diagonal(&diag) * m_phi.transpose()
 }

@@ -61,14 +61,16 @@ pub struct ArmSimulation {
 }
 
 impl ArmSimulation {
-    /// Starts at t = 0 with the arm undeformed and at rest relative to the hub.
-    pub fn new(
-        arm: ArmModel,
-        drive: HubDrive,
-        integrator: IntegratorKind,
-    ) -> Result<Self, ArmError> {
+    /// Starts at t = 0 at rest, the arm in static equilibrium under gravity at the start angle
+    /// (a lift begins from the arm sagging on its hub, not from an undeformed arm dropped).
+    pub fn new(arm: ArmModel, drive: HubDrive, integrator: IntegratorKind) -> Result<Self, ArmError> {
         let n = arm.elastic_dofs();
-        Self::with_initial(arm, drive, integrator, DVector::zeros(n), DVector::zeros(n))
+        let start_rad = match &drive {
+            HubDrive::Prescribed(p) => p.sample(0.0).angle_rad,
+            HubDrive::Free { .. } => 0.0,
+        };
+        let q0 = arm.static_deflection(start_rad)?;
+        Self::with_initial(arm, drive, integrator, q0, DVector::zeros(n))
     }
 
     /// Starts at t = 0 from elastic coordinates `q0` and rates `qd0`.
@@ -96,20 +98,9 @@ impl ArmSimulation {
             HubDrive::Free { .. } => Vec::new(),
         };
         let load = GeneralizedLoad::zero(n);
-        let system = ArmSystem {
-            arm: &arm,
-            drive: &drive,
-            load: &load,
-        };
+        let system = ArmSystem { arm: &arm, drive: &drive, load: &load };
         let state = State::consistent(&system, 0.0, x, v)?;
-        let mut sim = ArmSimulation {
-            integrator: integrator.build()?,
-            arm,
-            drive,
-            load,
-            state,
-            rate_jumps,
-        };
+        let mut sim = ArmSimulation { integrator: integrator.build()?, arm, drive, load, state, rate_jumps };
         sim.apply_rate_jumps_up_to(0.0)?;
         Ok(sim)
     }
@@ -127,11 +118,7 @@ impl ArmSimulation {
     /// Advances by `h_s` seconds, splitting the step at any jump of the drive's rate.
     pub fn step(&mut self, h_s: f64) -> Result<(), ArmError> {
         let t_end = self.state.t + h_s;
-        let next_jump = self
-            .rate_jumps
-            .first()
-            .map(|j| j.0)
-            .filter(|&tj| tj <= t_end);
+        let next_jump = self.rate_jumps.first().map(|j| j.0).filter(|&tj| tj <= t_end);
         if let Some(tj) = next_jump {
             self.advance(tj - self.state.t)?;
             self.apply_rate_jumps_up_to(tj)?;
@@ -148,11 +135,7 @@ impl ArmSimulation {
             self.state.t += h;
             return Ok(());
         }
-        let system = ArmSystem {
-            arm: &self.arm,
-            drive: &self.drive,
-            load: &self.load,
-        };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
         self.integrator.step(&system, &mut self.state, h)?;
         Ok(())
     }
@@ -175,15 +158,9 @@ impl ArmSimulation {
                 .clone()
                 .lu()
                 .solve(&(-jump * coupling))
-                .ok_or(ArmError::Integrate(
-                    crate::integrate::IntegrateError::SingularMatrix { t: tj },
-                ))?;
+                .ok_or(ArmError::Integrate(crate::integrate::IntegrateError::SingularMatrix { t: tj }))?;
             self.state.v += dqd;
-            let system = ArmSystem {
-                arm: &self.arm,
-                drive: &self.drive,
-                load: &self.load,
-            };
+            let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
             self.state.refresh_acceleration(&system)?;
             self.integrator.reset();
         }
@@ -210,11 +187,7 @@ impl ArmSimulation {
 
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
-        let system = ArmSystem {
-            arm: &self.arm,
-            drive: &self.drive,
-            load: &self.load,
-        };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
         let s = &self.state;
         let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
         let qdd = match self.drive {
@@ -237,10 +210,7 @@ impl ArmSimulation {
             tip_deflection_hub_m: [u, v],
             tip_velocity_hub_m_s: [ud, vd],
             tip_position_world_m: [cs * (l + u) - sn * v, sn * (l + u) + cs * v],
-            tip_velocity_world_m_s: [
-                cs * vel_body[0] - sn * vel_body[1],
-                sn * vel_body[0] + cs * vel_body[1],
-            ],
+            tip_velocity_world_m_s: [cs * vel_body[0] - sn * vel_body[1], sn * vel_body[0] + cs * vel_body[1]],
             drive_torque_n_m: system.drive_torque(&hub, &q, &qd, &qdd),
             energies: system.energies(&hub, &q, &qd),
             q,
@@ -249,11 +219,7 @@ impl ArmSimulation {
 
     /// Deformed centreline in the world at `samples` + 1 stations from pivot to tip, m.
     pub fn centreline_world_m(&self, samples: usize) -> Vec<[f64; 2]> {
-        let system = ArmSystem {
-            arm: &self.arm,
-            drive: &self.drive,
-            load: &self.load,
-        };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
         let (hub, q, _) = system.split(self.state.t, &self.state.x, &self.state.v);
         let (sn, cs) = hub.angle_rad.sin_cos();
         let l = self.arm.length_m();
@@ -268,8 +234,5 @@ impl ArmSimulation {
 }
 
 fn prepend(first: f64, rest: &DVector<f64>) -> DVector<f64> {
-    DVector::from_iterator(
-        rest.len() + 1,
-        std::iter::once(first).chain(rest.iter().copied()),
-    )
+    DVector::from_iterator(rest.len() + 1, std::iter::once(first).chain(rest.iter().copied()))
 }

@@ -37,24 +37,10 @@ pub struct ShapeRows {
 pub fn shape_rows(xi: f64, h_m: f64) -> ShapeRows {
     let (x, h) = (xi, h_m);
     let (x2, x3) = (x * x, x * x * x);
-    let hermite = [
-        1.0 - 3.0 * x2 + 2.0 * x3,
-        h * (x - 2.0 * x2 + x3),
-        3.0 * x2 - 2.0 * x3,
-        h * (x3 - x2),
-    ];
-    let d_hermite = [
-        (-6.0 * x + 6.0 * x2) / h,
-        1.0 - 4.0 * x + 3.0 * x2,
-        (6.0 * x - 6.0 * x2) / h,
-        3.0 * x2 - 2.0 * x,
-    ];
-    let dd_hermite = [
-        (-6.0 + 12.0 * x) / (h * h),
-        (-4.0 + 6.0 * x) / h,
-        (6.0 - 12.0 * x) / (h * h),
-        (6.0 * x - 2.0) / h,
-    ];
+    let hermite = [1.0 - 3.0 * x2 + 2.0 * x3, h * (x - 2.0 * x2 + x3), 3.0 * x2 - 2.0 * x3, h * (x3 - x2)];
+    let d_hermite = [(-6.0 * x + 6.0 * x2) / h, 1.0 - 4.0 * x + 3.0 * x2, (6.0 * x - 6.0 * x2) / h, 3.0 * x2 - 2.0 * x];
+    let dd_hermite =
+        [(-6.0 + 12.0 * x) / (h * h), (-4.0 + 6.0 * x) / h, (6.0 - 12.0 * x) / (h * h), (6.0 * x - 2.0) / h];
     let spread = |c: [f64; 4]| [0.0, c[0], c[1], 0.0, c[2], c[3]];
     ShapeRows {
         u: [1.0 - x, 0.0, 0.0, x, 0.0, 0.0],

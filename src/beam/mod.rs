@@ -30,11 +30,7 @@ pub const NODE_DOFS: usize = 3;
 pub enum BeamError {
     /// A parameter outside its allowed range.
     #[error("beam parameter `{name}` = {value} is invalid: allowed {allowed}")]
-    InvalidParameter {
-        name: String,
-        value: f64,
-        allowed: String,
-    },
+    InvalidParameter { name: String, value: f64, allowed: String },
     /// A matrix that should be positive definite is not (e.g. a mechanism or a zero mass).
     #[error("the {matrix} matrix is not positive definite: {why}")]
     NotPositiveDefinite { matrix: &'static str, why: String },
@@ -42,11 +38,7 @@ pub enum BeamError {
 
 impl BeamError {
     pub(crate) fn invalid(name: &str, value: f64, allowed: impl Into<String>) -> Self {
-        BeamError::InvalidParameter {
-            name: name.to_string(),
-            value,
-            allowed: allowed.into(),
-        }
+        BeamError::InvalidParameter { name: name.to_string(), value, allowed: allowed.into() }
     }
 }
 
@@ -66,11 +58,7 @@ pub struct Segment {
 
 impl Segment {
     /// A segment of `length_m` with the given section shape and material.
-    pub fn from_shape(
-        length_m: f64,
-        shape: &SectionShape,
-        material: &Material,
-    ) -> Result<Self, BeamError> {
+    pub fn from_shape(length_m: f64, shape: &SectionShape, material: &Material) -> Result<Self, BeamError> {
         material.validate()?;
         let p = shape.properties()?;
         Ok(Segment {
@@ -118,27 +106,12 @@ pub struct BeamSpec {
 impl BeamSpec {
     /// A uniform arm of one segment.
     pub fn uniform(segment: Segment, elements: usize) -> Self {
-        BeamSpec {
-            segments: vec![segment],
-            masses: Vec::new(),
-            elements,
-        }
+        BeamSpec { segments: vec![segment], masses: Vec::new(), elements }
     }
 
     /// Adds a concentrated mass (builder style).
-    pub fn with_mass(
-        mut self,
-        name: &str,
-        position_m: f64,
-        mass_kg: f64,
-        rotary_inertia_kg_m2: f64,
-    ) -> Self {
-        self.masses.push(ConcentratedMass {
-            name: name.into(),
-            position_m,
-            mass_kg,
-            rotary_inertia_kg_m2,
-        });
+    pub fn with_mass(mut self, name: &str, position_m: f64, mass_kg: f64, rotary_inertia_kg_m2: f64) -> Self {
+        self.masses.push(ConcentratedMass { name: name.into(), position_m, mass_kg, rotary_inertia_kg_m2 });
         self
     }
 
@@ -153,11 +126,7 @@ impl BeamSpec {
             return Err(BeamError::invalid("segments", 0.0, "at least one segment"));
         }
         if self.elements == 0 || self.elements > 2000 {
-            return Err(BeamError::invalid(
-                "elements",
-                self.elements as f64,
-                "1 ..= 2000",
-            ));
+            return Err(BeamError::invalid("elements", self.elements as f64, "1 ..= 2000"));
         }
         self.segments.iter().try_for_each(Segment::validate)?;
         let length = self.length_m();
@@ -165,17 +134,10 @@ impl BeamSpec {
             let inside = m.position_m.is_finite() && (0.0..=length).contains(&m.position_m);
             if !inside {
                 let name = format!("masses.{}.position_m", m.name);
-                return Err(BeamError::invalid(
-                    &name,
-                    m.position_m,
-                    format!("0 ..= {length} (the arm length)"),
-                ));
+                return Err(BeamError::invalid(&name, m.position_m, format!("0 ..= {length} (the arm length)")));
             }
             non_negative(&format!("masses.{}.mass_kg", m.name), m.mass_kg)?;
-            non_negative(
-                &format!("masses.{}.rotary_inertia_kg_m2", m.name),
-                m.rotary_inertia_kg_m2,
-            )?;
+            non_negative(&format!("masses.{}.rotary_inertia_kg_m2", m.name), m.rotary_inertia_kg_m2)?;
         }
         Ok(())
     }
@@ -195,8 +157,7 @@ impl BeamSpec {
         breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
         let mut nodes = vec![0.0];
         for gap in breaks.windows(2) {
-            let count =
-                ((self.elements as f64 * (gap[1] - gap[0]) / length).round() as usize).max(1);
+            let count = ((self.elements as f64 * (gap[1] - gap[0]) / length).round() as usize).max(1);
             nodes.extend((1..=count).map(|k| gap[0] + (gap[1] - gap[0]) * k as f64 / count as f64));
         }
         *nodes.last_mut().expect("at least one gap") = length;
@@ -223,14 +184,7 @@ pub struct Element {
 fn element_dofs(element_index: usize) -> [Option<usize>; ELEMENT_DOFS] {
     let node_dof = |node: usize, k: usize| (node > 0).then(|| NODE_DOFS * (node - 1) + k);
     let (a, b) = (element_index, element_index + 1);
-    [
-        node_dof(a, 0),
-        node_dof(a, 1),
-        node_dof(a, 2),
-        node_dof(b, 0),
-        node_dof(b, 1),
-        node_dof(b, 2),
-    ]
+    [node_dof(a, 0), node_dof(a, 1), node_dof(a, 2), node_dof(b, 0), node_dof(b, 1), node_dof(b, 2)]
 }
 
 /// The assembled clamped beam and every integral the floating-frame model uses.
@@ -361,11 +315,7 @@ impl BeamModel {
             if node == 0 {
                 continue; // on the clamp: only the hub inertia sees it
             }
-            let (u, v, phi) = (
-                NODE_DOFS * (node - 1),
-                NODE_DOFS * (node - 1) + 1,
-                NODE_DOFS * (node - 1) + 2,
-            );
+            let (u, v, phi) = (NODE_DOFS * (node - 1), NODE_DOFS * (node - 1) + 1, NODE_DOFS * (node - 1) + 2);
             for d in [u, v] {
                 self.translational_mass[(d, d)] += mass;
             }
@@ -391,18 +341,10 @@ impl BeamModel {
     /// [`Self::dofs`]. `x_m` is clamped into [0, L].
     pub fn point_rows(&self, x_m: f64) -> [DVector<f64>; 3] {
         let x = x_m.clamp(0.0, self.length_m());
-        let e = self
-            .elements
-            .iter()
-            .position(|el| x <= el.x0_m + el.length_m)
-            .unwrap_or(self.elements.len() - 1);
+        let e = self.elements.iter().position(|el| x <= el.x0_m + el.length_m).unwrap_or(self.elements.len() - 1);
         let el = &self.elements[e];
         let r = shape_rows((x - el.x0_m) / el.length_m, el.length_m);
-        let mut rows = [
-            DVector::zeros(self.dofs()),
-            DVector::zeros(self.dofs()),
-            DVector::zeros(self.dofs()),
-        ];
+        let mut rows = [DVector::zeros(self.dofs()), DVector::zeros(self.dofs()), DVector::zeros(self.dofs())];
         for (i, g) in element_dofs(e).iter().enumerate() {
             if let Some(g) = *g {
                 rows[0][g] = r.u[i];
@@ -415,14 +357,10 @@ impl BeamModel {
 
     /// Static displacement under a load vector `f` (N and N·m on the DOFs), clamped hub.
     pub fn static_displacement(&self, load: &DVector<f64>) -> Result<DVector<f64>, BeamError> {
-        let chol = self
-            .stiffness
-            .clone()
-            .cholesky()
-            .ok_or(BeamError::NotPositiveDefinite {
-                matrix: "stiffness",
-                why: "the clamped arm must be a structure".into(),
-            })?;
+        let chol = self.stiffness.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
+            matrix: "stiffness",
+            why: "the clamped arm must be a structure".into(),
+        })?;
         Ok(chol.solve(load))
     }
 
@@ -446,10 +384,7 @@ fn mesh_elements(spec: &BeamSpec, nodes: &[f64]) -> Vec<Element> {
         .windows(2)
         .map(|w| {
             let mid = 0.5 * (w[0] + w[1]);
-            let seg = ends
-                .iter()
-                .find(|(end, _)| mid <= *end)
-                .map_or(ends[ends.len() - 1].1, |e| e.1);
+            let seg = ends.iter().find(|(end, _)| mid <= *end).map_or(ends[ends.len() - 1].1, |e| e.1);
             Element {
                 x0_m: w[0],
                 length_m: w[1] - w[0],
@@ -475,12 +410,7 @@ impl OutboardLoads {
         let mut acc = (0.0, 0.0);
         for e in (0..n).rev() {
             let tip = model.elements[e].x0_m + model.elements[e].length_m;
-            for m in model
-                .spec
-                .masses
-                .iter()
-                .filter(|m| (m.position_m - tip).abs() <= 1e-9 * model.length_m())
-            {
+            for m in model.spec.masses.iter().filter(|m| (m.position_m - tip).abs() <= 1e-9 * model.length_m()) {
                 acc.0 += m.mass_kg;
                 acc.1 += m.mass_kg * m.position_m;
             }
@@ -490,15 +420,9 @@ impl OutboardLoads {
             acc.0 += el.mass_per_length_kg_m * (tip - x0);
             acc.1 += el.mass_per_length_kg_m * (tip * tip - x0 * x0) / 2.0;
         }
-        let mass_per_length = model
-            .elements
-            .iter()
-            .map(|el| (el.x0_m + el.length_m, el.mass_per_length_kg_m))
-            .collect();
-        OutboardLoads {
-            beyond_element: beyond,
-            mass_per_length,
-        }
+        let mass_per_length =
+            model.elements.iter().map(|el| (el.x0_m + el.length_m, el.mass_per_length_kg_m)).collect();
+        OutboardLoads { beyond_element: beyond, mass_per_length }
     }
 
     /// Mass outboard of `x` inside element `e`, kg.

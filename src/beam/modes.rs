@@ -26,18 +26,12 @@ impl ModalBasis {
 
     /// Natural frequencies in Hz.
     pub fn frequencies_hz(&self) -> Vec<f64> {
-        self.omegas_rad_s
-            .iter()
-            .map(|w| w / std::f64::consts::TAU)
-            .collect()
+        self.omegas_rad_s.iter().map(|w| w / std::f64::consts::TAU).collect()
     }
 
     /// The first `n` modes.
     pub fn truncated(&self, n: usize) -> ModalBasis {
-        ModalBasis {
-            omegas_rad_s: self.omegas_rad_s[..n].to_vec(),
-            shapes: self.shapes.columns(0, n).into_owned(),
-        }
+        ModalBasis { omegas_rad_s: self.omegas_rad_s[..n].to_vec(), shapes: self.shapes.columns(0, n).into_owned() }
     }
 }
 
@@ -50,11 +44,7 @@ impl BeamModel {
     /// Eigenmodes of the arm on a hub spinning steadily at `spin_rad_s` (no gravity):
     /// (K + Ω²(K_c − M_tr)) φ = ω² M φ, centrifugal stiffening included when `stiffening`.
     /// Errors when the spin makes the arm unstable (a negative ω²).
-    pub fn modes_spinning(
-        &self,
-        spin_rad_s: f64,
-        stiffening: bool,
-    ) -> Result<ModalBasis, BeamError> {
+    pub fn modes_spinning(&self, spin_rad_s: f64, stiffening: bool) -> Result<ModalBasis, BeamError> {
         let w2 = spin_rad_s * spin_rad_s;
         let mut k = &self.stiffness - w2 * &self.translational_mass;
         if stiffening {
@@ -78,18 +68,15 @@ impl BeamModel {
 
 /// Solves K φ = λ M φ for symmetric K and positive-definite M through M = L Lᵀ.
 fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, BeamError> {
-    let chol = m.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
-        matrix: "mass",
-        why: "every DOF needs mass or inertia".into(),
-    })?;
+    let chol = m
+        .clone()
+        .cholesky()
+        .ok_or(BeamError::NotPositiveDefinite { matrix: "mass", why: "every DOF needs mass or inertia".into() })?;
     let l = chol.l();
     let l_inv = l
         .clone()
         .try_inverse()
-        .ok_or(BeamError::NotPositiveDefinite {
-            matrix: "mass",
-            why: "singular Cholesky factor".into(),
-        })?;
+        .ok_or(BeamError::NotPositiveDefinite { matrix: "mass", why: "singular Cholesky factor".into() })?;
     let mut a = &l_inv * k * l_inv.transpose();
     a = 0.5 * (&a + a.transpose());
     let eig = a.symmetric_eigen();
@@ -100,10 +87,7 @@ fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, B
     {
         return Err(BeamError::NotPositiveDefinite {
             matrix: "stiffness",
-            why: format!(
-                "lowest eigenvalue ω² = {:.4e} (the arm is unstable in this state)",
-                eig.eigenvalues[lowest]
-            ),
+            why: format!("lowest eigenvalue ω² = {:.4e} (the arm is unstable in this state)", eig.eigenvalues[lowest]),
         });
     }
     let l_inv_t = l_inv.transpose();
@@ -111,20 +95,11 @@ fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, B
     for (col, &i) in order.iter().enumerate() {
         let mut phi: DVector<f64> = &l_inv_t * eig.eigenvectors.column(i);
         // Sign convention: the largest component is positive, so runs are reproducible.
-        if phi
-            .iter()
-            .copied()
-            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
-            .unwrap_or(0.0)
-            < 0.0
-        {
+        if phi.iter().copied().max_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0) < 0.0 {
             phi.neg_mut();
         }
         shapes.set_column(col, &phi);
     }
     let omegas_rad_s = order.iter().map(|&i| eig.eigenvalues[i].sqrt()).collect();
-    Ok(ModalBasis {
-        omegas_rad_s,
-        shapes,
-    })
+    Ok(ModalBasis { omegas_rad_s, shapes })
 }

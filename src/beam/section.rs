@@ -20,10 +20,7 @@ pub struct Material {
 
 impl Material {
     /// Structural steel (E = 206 GPa, ρ = 7850 kg/m³), the seed's arm material.
-    pub const STEEL: Material = Material {
-        youngs_modulus_pa: 2.06e11,
-        density_kg_m3: 7850.0,
-    };
+    pub const STEEL: Material = Material { youngs_modulus_pa: 2.06e11, density_kg_m3: 7850.0 };
 
     /// Checks that E and ρ are finite and positive.
     pub fn validate(&self) -> Result<(), BeamError> {
@@ -41,11 +38,7 @@ pub enum SectionShape {
     /// Solid rectangle `width_m` × `depth_m` (depth in the bending plane).
     SolidRectangle { width_m: f64, depth_m: f64 },
     /// Rectangular hollow section with uniform wall `wall_m`.
-    HollowRectangle {
-        width_m: f64,
-        depth_m: f64,
-        wall_m: f64,
-    },
+    HollowRectangle { width_m: f64, depth_m: f64, wall_m: f64 },
     /// Circular tube of outer diameter `outer_diameter_m` and wall `wall_m`.
     Tube { outer_diameter_m: f64, wall_m: f64 },
 }
@@ -75,42 +68,26 @@ impl SectionShape {
                 positive("diameter_m", d)?;
                 (PI * d * d / 4.0, PI * d.powi(4) / 64.0)
             }
-            SectionShape::SolidRectangle {
-                width_m: b,
-                depth_m: h,
-            } => {
+            SectionShape::SolidRectangle { width_m: b, depth_m: h } => {
                 positive("width_m", b)?;
                 positive("depth_m", h)?;
                 (b * h, b * h.powi(3) / 12.0)
             }
-            SectionShape::HollowRectangle {
-                width_m: b,
-                depth_m: h,
-                wall_m: t,
-            } => {
+            SectionShape::HollowRectangle { width_m: b, depth_m: h, wall_m: t } => {
                 positive("width_m", b)?;
                 positive("depth_m", h)?;
                 wall_fits(t, b.min(h))?;
                 let (bi, hi) = (b - 2.0 * t, h - 2.0 * t);
                 (b * h - bi * hi, (b * h.powi(3) - bi * hi.powi(3)) / 12.0)
             }
-            SectionShape::Tube {
-                outer_diameter_m: d,
-                wall_m: t,
-            } => {
+            SectionShape::Tube { outer_diameter_m: d, wall_m: t } => {
                 positive("outer_diameter_m", d)?;
                 wall_fits(t, d)?;
                 let di = d - 2.0 * t;
-                (
-                    PI * (d * d - di * di) / 4.0,
-                    PI * (d.powi(4) - di.powi(4)) / 64.0,
-                )
+                (PI * (d * d - di * di) / 4.0, PI * (d.powi(4) - di.powi(4)) / 64.0)
             }
         };
-        Ok(SectionProperties {
-            area_m2,
-            second_moment_m4,
-        })
+        Ok(SectionProperties { area_m2, second_moment_m4 })
     }
 }
 
@@ -119,30 +96,18 @@ fn wall_fits(wall_m: f64, extent_m: f64) -> Result<(), BeamError> {
     if wall_m.is_finite() && wall_m > 0.0 && 2.0 * wall_m < extent_m {
         Ok(())
     } else {
-        Err(BeamError::invalid(
-            "wall_m",
-            wall_m,
-            format!("0 < wall_m < {}", extent_m / 2.0),
-        ))
+        Err(BeamError::invalid("wall_m", wall_m, format!("0 < wall_m < {}", extent_m / 2.0)))
     }
 }
 
 /// Checks `value` is finite and > 0.
 pub(crate) fn positive(name: &str, value: f64) -> Result<(), BeamError> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(BeamError::invalid(name, value, "a finite value > 0"))
-    }
+    if value.is_finite() && value > 0.0 { Ok(()) } else { Err(BeamError::invalid(name, value, "a finite value > 0")) }
 }
 
 /// Checks `value` is finite and ≥ 0.
 pub(crate) fn non_negative(name: &str, value: f64) -> Result<(), BeamError> {
-    if value.is_finite() && value >= 0.0 {
-        Ok(())
-    } else {
-        Err(BeamError::invalid(name, value, "a finite value >= 0"))
-    }
+    if value.is_finite() && value >= 0.0 { Ok(()) } else { Err(BeamError::invalid(name, value, "a finite value >= 0")) }
 }
 
 #[cfg(test)]
@@ -152,41 +117,21 @@ mod tests {
     #[test]
     fn catalogue_matches_textbook_formulas() {
         // Hollow rectangle 100 x 200 x 10: A = 100*200 - 80*180, I = (100*200^3 - 80*180^3)/12 (mm).
-        let p = SectionShape::HollowRectangle {
-            width_m: 0.1,
-            depth_m: 0.2,
-            wall_m: 0.01,
-        }
-        .properties()
-        .unwrap();
+        let p = SectionShape::HollowRectangle { width_m: 0.1, depth_m: 0.2, wall_m: 0.01 }.properties().unwrap();
         assert!((p.area_m2 - 5.6e-3).abs() < 1e-15);
         assert!((p.second_moment_m4 - (0.1 * 0.008 - 0.08 * 0.005832) / 12.0).abs() < 1e-18);
         // A tube with a vanishing wall tends to pi d t and pi d^3 t / 8.
         let (d, t) = (0.3, 1e-6);
-        let p = SectionShape::Tube {
-            outer_diameter_m: d,
-            wall_m: t,
-        }
-        .properties()
-        .unwrap();
+        let p = SectionShape::Tube { outer_diameter_m: d, wall_m: t }.properties().unwrap();
         assert!((p.area_m2 / (std::f64::consts::PI * d * t) - 1.0).abs() < 1e-4);
-        assert!(
-            (p.second_moment_m4 / (std::f64::consts::PI * d.powi(3) * t / 8.0) - 1.0).abs() < 1e-4
-        );
+        assert!((p.second_moment_m4 / (std::f64::consts::PI * d.powi(3) * t / 8.0) - 1.0).abs() < 1e-4);
     }
 
     #[test]
     fn bad_dimensions_name_the_parameter() {
-        let e = SectionShape::Tube {
-            outer_diameter_m: 0.1,
-            wall_m: 0.06,
-        }
-        .properties()
-        .unwrap_err();
+        let e = SectionShape::Tube { outer_diameter_m: 0.1, wall_m: 0.06 }.properties().unwrap_err();
         assert!(e.to_string().contains("wall_m"), "{e}");
-        let e = SectionShape::SolidCircle { diameter_m: -1.0 }
-            .properties()
-            .unwrap_err();
+        let e = SectionShape::SolidCircle { diameter_m: -1.0 }.properties().unwrap_err();
         assert!(e.to_string().contains("diameter_m"), "{e}");
     }
 }

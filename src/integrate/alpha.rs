@@ -46,58 +46,30 @@ impl GeneralizedAlpha {
     /// Chung–Hulbert generalized-α with spectral radius `rho_inf` ∈ [0, 1] at infinite ωh.
     pub fn chung_hulbert(rho_inf: f64) -> Result<Self, IntegrateError> {
         if !(0.0..=1.0).contains(&rho_inf) {
-            return Err(IntegrateError::InvalidParameter {
-                name: "rho_inf",
-                value: rho_inf,
-                allowed: "0 ..= 1",
-            });
+            return Err(IntegrateError::InvalidParameter { name: "rho_inf", value: rho_inf, allowed: "0 ..= 1" });
         }
         let alpha_m = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
         let alpha_f = rho_inf / (rho_inf + 1.0);
         let gamma = 0.5 - alpha_m + alpha_f;
         let beta = 0.25 * (1.0 - alpha_m + alpha_f).powi(2);
-        Ok(Self::new(
-            "generalized-alpha",
-            alpha_m,
-            alpha_f,
-            beta,
-            gamma,
-        ))
+        Ok(Self::new("generalized-alpha", alpha_m, alpha_f, beta, gamma))
     }
 
     /// Hilber–Hughes–Taylor with `alpha` ∈ [−1/3, 0] (0 is average-acceleration Newmark).
     pub fn hht(alpha: f64) -> Result<Self, IntegrateError> {
         if !(-1.0 / 3.0..=0.0).contains(&alpha) {
-            return Err(IntegrateError::InvalidParameter {
-                name: "alpha",
-                value: alpha,
-                allowed: "-1/3 ..= 0",
-            });
+            return Err(IntegrateError::InvalidParameter { name: "alpha", value: alpha, allowed: "-1/3 ..= 0" });
         }
-        Ok(Self::new(
-            "hht",
-            0.0,
-            -alpha,
-            0.25 * (1.0 - alpha).powi(2),
-            0.5 - alpha,
-        ))
+        Ok(Self::new("hht", 0.0, -alpha, 0.25 * (1.0 - alpha).powi(2), 0.5 - alpha))
     }
 
     /// Newmark-β; average acceleration is β = 1/4, γ = 1/2; linear acceleration β = 1/6.
     pub fn newmark(beta: f64, gamma: f64) -> Result<Self, IntegrateError> {
         if !(beta > 0.0 && beta <= 0.5) {
-            return Err(IntegrateError::InvalidParameter {
-                name: "beta",
-                value: beta,
-                allowed: "0 < beta <= 1/2",
-            });
+            return Err(IntegrateError::InvalidParameter { name: "beta", value: beta, allowed: "0 < beta <= 1/2" });
         }
         if !(0.5..=1.0).contains(&gamma) {
-            return Err(IntegrateError::InvalidParameter {
-                name: "gamma",
-                value: gamma,
-                allowed: "1/2 ..= 1",
-            });
+            return Err(IntegrateError::InvalidParameter { name: "gamma", value: gamma, allowed: "1/2 ..= 1" });
         }
         Ok(Self::new("newmark", 0.0, 0.0, beta, gamma))
     }
@@ -119,27 +91,19 @@ impl Integrator for GeneralizedAlpha {
 
     fn step(&mut self, sys: &dyn Dynamics, s: &mut State, h: f64) -> Result<(), IntegrateError> {
         let n = sys.dofs();
-        let a_n = self
-            .pseudo_acceleration
-            .take()
-            .unwrap_or_else(|| s.a.clone());
+        let a_n = self.pseudo_acceleration.take().unwrap_or_else(|| s.a.clone());
         let t1 = s.t + h;
         let ratio = (1.0 - self.alpha_f) / (1.0 - self.alpha_m);
         // x_{n+1}, ẋ_{n+1} and a_{n+1} are affine in the unknown ẍ_{n+1}:
-        let pseudo_of = |acc: &DVector<f64>| {
-            ratio * acc + (self.alpha_f * &s.a - self.alpha_m * &a_n) / (1.0 - self.alpha_m)
-        };
+        let pseudo_of =
+            |acc: &DVector<f64>| ratio * acc + (self.alpha_f * &s.a - self.alpha_m * &a_n) / (1.0 - self.alpha_m);
         let dx_dacc = h * h * self.beta * ratio;
         let dv_dacc = h * self.gamma * ratio;
         let x_base = &s.x + h * &s.v + h * h * (0.5 - self.beta) * &a_n;
         let v_base = &s.v + h * (1.0 - self.gamma) * &a_n;
 
         let mut acc = s.a.clone();
-        let (mut m, mut kt, mut ct) = (
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
-            DMatrix::zeros(n, n),
-        );
+        let (mut m, mut kt, mut ct) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         let mut f = DVector::zeros(n);
         let mut residual_norm = f64::INFINITY;
         for iteration in 0..self.max_iterations {
@@ -151,14 +115,10 @@ impl Integrator for GeneralizedAlpha {
             let residual = &m * &acc - &f;
             sys.tangents(t1, &x1, &v1, &mut kt, &mut ct);
             let jacobian = &m + dv_dacc * &ct + dx_dacc * &kt;
-            let delta = jacobian
-                .lu()
-                .solve(&residual)
-                .ok_or(IntegrateError::SingularMatrix { t: t1 })?;
+            let delta = jacobian.lu().solve(&residual).ok_or(IntegrateError::SingularMatrix { t: t1 })?;
             acc -= &delta;
             residual_norm = delta.norm();
-            let converged =
-                sys.is_linear() || residual_norm <= self.tolerance * acc.norm().max(1e-300);
+            let converged = sys.is_linear() || residual_norm <= self.tolerance * acc.norm().max(1e-300);
             if converged || (iteration > 0 && residual_norm == 0.0) {
                 let a1 = pseudo_of(&acc);
                 s.x = &x_base + h * h * self.beta * &a1;
@@ -169,9 +129,6 @@ impl Integrator for GeneralizedAlpha {
                 return check_finite(s);
             }
         }
-        Err(IntegrateError::NoConvergence {
-            t: t1,
-            residual: residual_norm,
-        })
+        Err(IntegrateError::NoConvergence { t: t1, residual: residual_norm })
     }
 }

@@ -52,12 +52,11 @@ impl Integrator for Rk4 {
 
     fn step(&mut self, sys: &dyn Dynamics, s: &mut State, h: f64) -> Result<(), IntegrateError> {
         let n = sys.dofs();
-        let stage =
-            |t: f64, x: &DVector<f64>, v: &DVector<f64>| -> Result<DVector<f64>, IntegrateError> {
-                let mut a = DVector::zeros(n);
-                solve_acceleration(sys, t, x, v, &mut a)?;
-                Ok(a)
-            };
+        let stage = |t: f64, x: &DVector<f64>, v: &DVector<f64>| -> Result<DVector<f64>, IntegrateError> {
+            let mut a = DVector::zeros(n);
+            solve_acceleration(sys, t, x, v, &mut a)?;
+            Ok(a)
+        };
         let (x0, v0, t0) = (&s.x, &s.v, s.t);
         let (k1x, k1v) = (v0.clone(), s.a.clone());
         let (x2, v2) = (x0 + 0.5 * h * &k1x, v0 + 0.5 * h * &k1v);

@@ -25,14 +25,7 @@ pub trait Dynamics {
     fn forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>);
     /// Writes the tangents K_t = −∂f/∂x and C_t = −∂f/∂ẋ. The default differentiates
     /// [`Self::forces`] numerically; override with exact tangents where they are cheap.
-    fn tangents(
-        &self,
-        t: f64,
-        x: &DVector<f64>,
-        v: &DVector<f64>,
-        k: &mut DMatrix<f64>,
-        c: &mut DMatrix<f64>,
-    ) {
+    fn tangents(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         finite_difference_tangents(self, t, x, v, k, c);
     }
     /// True when f is affine in (x, ẋ) and M is constant, so that one Newton iteration with the
@@ -100,10 +93,7 @@ impl State {
     }
 
     /// Recomputes the acceleration after x or ẋ was changed from outside (an impulse).
-    pub fn refresh_acceleration<S: Dynamics + ?Sized>(
-        &mut self,
-        sys: &S,
-    ) -> Result<(), IntegrateError> {
+    pub fn refresh_acceleration<S: Dynamics + ?Sized>(&mut self, sys: &S) -> Result<(), IntegrateError> {
         solve_acceleration(sys, self.t, &self.x, &self.v, &mut self.a)
     }
 }
@@ -140,17 +130,11 @@ pub enum IntegrateError {
     #[error("Newton iteration did not converge at t = {t} s (residual {residual:.3e})")]
     NoConvergence { t: f64, residual: f64 },
     /// The state blew up (NaN or infinity): the step is beyond the method's stability limit.
-    #[error(
-        "state is no longer finite at t = {t} s: the step is beyond the method's stability limit"
-    )]
+    #[error("state is no longer finite at t = {t} s: the step is beyond the method's stability limit")]
     NonFinite { t: f64 },
     /// A parameter of the method outside its range.
     #[error("integrator parameter `{name}` = {value} is invalid: allowed {allowed}")]
-    InvalidParameter {
-        name: &'static str,
-        value: f64,
-        allowed: &'static str,
-    },
+    InvalidParameter { name: &'static str, value: f64, allowed: &'static str },
 }
 
 /// One time-stepping method.
@@ -158,8 +142,7 @@ pub trait Integrator: Send {
     /// Short name, as written in scenarios.
     fn name(&self) -> &'static str;
     /// Advances `state` by `h` seconds.
-    fn step(&mut self, sys: &dyn Dynamics, state: &mut State, h: f64)
-    -> Result<(), IntegrateError>;
+    fn step(&mut self, sys: &dyn Dynamics, state: &mut State, h: f64) -> Result<(), IntegrateError>;
     /// Forgets any history (call after an impulse changed the state from outside).
     fn reset(&mut self) {}
 }
@@ -193,12 +176,8 @@ impl IntegratorKind {
     /// Builds the integrator, checking its parameters.
     pub fn build(&self) -> Result<Box<dyn Integrator>, IntegrateError> {
         Ok(match *self {
-            IntegratorKind::GeneralizedAlpha { rho_inf } => {
-                Box::new(GeneralizedAlpha::chung_hulbert(rho_inf)?)
-            }
-            IntegratorKind::Newmark { beta, gamma } => {
-                Box::new(GeneralizedAlpha::newmark(beta, gamma)?)
-            }
+            IntegratorKind::GeneralizedAlpha { rho_inf } => Box::new(GeneralizedAlpha::chung_hulbert(rho_inf)?),
+            IntegratorKind::Newmark { beta, gamma } => Box::new(GeneralizedAlpha::newmark(beta, gamma)?),
             IntegratorKind::Hht { alpha } => Box::new(GeneralizedAlpha::hht(alpha)?),
             IntegratorKind::SymplecticEuler => Box::new(SymplecticEuler::default()),
             IntegratorKind::Rk4 => Box::new(Rk4::default()),
@@ -209,9 +188,5 @@ impl IntegratorKind {
 
 pub(crate) fn check_finite(state: &State) -> Result<(), IntegrateError> {
     let finite = state.x.iter().chain(state.v.iter()).all(|v| v.is_finite());
-    if finite {
-        Ok(())
-    } else {
-        Err(IntegrateError::NonFinite { t: state.t })
-    }
+    if finite { Ok(()) } else { Err(IntegrateError::NonFinite { t: state.t }) }
 }

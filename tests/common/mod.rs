@@ -19,10 +19,7 @@ pub fn uniform(length_m: f64, ei: f64, rho_a: f64, elements: usize) -> BeamSpec 
 
 /// λ_i = L (ω_i² ρA / EI)^(1/4) of the first `n` modes of a model.
 pub fn lambdas(omegas: &[f64], length_m: f64, ei: f64, rho_a: f64, n: usize) -> Vec<f64> {
-    omegas[..n]
-        .iter()
-        .map(|w| length_m * (w * w * rho_a / ei).powf(0.25))
-        .collect()
+    omegas[..n].iter().map(|w| length_m * (w * w * rho_a / ei).powf(0.25)).collect()
 }
 
 /// Builds the model, panicking with the error (tests only).
@@ -39,18 +36,12 @@ pub fn rel(a: f64, b: f64) -> f64 {
 /// (sin λ cosh λ − cos λ sinh λ) + γ λ³ (1 + cos λ cosh λ) = 0, γ = J_h/(ρAL³),
 /// bracketed between the clamped-free (γ→∞) and pinned-free (γ→0) first roots.
 pub fn hub_inertia_lambda(gamma: f64) -> f64 {
-    let f = |l: f64| {
-        (l.sin() * l.cosh() - l.cos() * l.sinh()) + gamma * l.powi(3) * (1.0 + l.cos() * l.cosh())
-    };
+    let f = |l: f64| (l.sin() * l.cosh() - l.cos() * l.sinh()) + gamma * l.powi(3) * (1.0 + l.cos() * l.cosh());
     let (mut lo, mut hi) = (1.8751, 3.9266);
     assert!(f(lo) * f(hi) < 0.0, "root not bracketed for gamma {gamma}");
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if f(lo) * f(mid) <= 0.0 {
-            hi = mid
-        } else {
-            lo = mid
-        }
+        if f(lo) * f(mid) <= 0.0 { hi = mid } else { lo = mid }
     }
     0.5 * (lo + hi)
 }
