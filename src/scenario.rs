@@ -121,7 +121,13 @@ impl Scenario {
 
     /// Checks the ranges serde cannot: builds every part once.
     pub fn validate(&self, path: &Path) -> Result<(), ScenarioError> {
-        self.beam_spec().map_err(|e| beam_error(path, e))?;
+        let beam = self.beam_spec().and_then(BeamModel::new).map_err(|e| beam_error(path, e))?;
+        if let Fidelity::Modal { modes } = self.model
+            && !(1..=beam.dofs()).contains(&modes)
+        {
+            let allowed = format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.dofs());
+            return Err(invalid(path, "model.modes", allowed));
+        }
         self.motion().map_err(|e| drive_error(path, e))?;
         self.integrator.build().map_err(|e| invalid(path, "integrator", e.to_string()))?;
         let t = self.time;

@@ -283,8 +283,8 @@ impl BeamModel {
                     self.axial_moment[gi] += dx * mu * x * r.u[i];
                     self.axial_mass[gi] += dx * mu * r.u[i];
                     self.transverse_mass[gi] += dx * mu * r.v[i];
-                    for j in 0..ELEMENT_DOFS {
-                        let Some(gj) = dofs[j] else { continue };
+                    for (j, gj) in dofs.iter().enumerate() {
+                        let Some(gj) = *gj else { continue };
                         let m = mu * (r.u[i] * r.u[j] + r.v[i] * r.v[j]);
                         self.translational_mass[(gi, gj)] += dx * m;
                         self.stiffness[(gi, gj)] += dx

@@ -179,9 +179,9 @@ impl IntegratorKind {
             IntegratorKind::GeneralizedAlpha { rho_inf } => Box::new(GeneralizedAlpha::chung_hulbert(rho_inf)?),
             IntegratorKind::Newmark { beta, gamma } => Box::new(GeneralizedAlpha::newmark(beta, gamma)?),
             IntegratorKind::Hht { alpha } => Box::new(GeneralizedAlpha::hht(alpha)?),
-            IntegratorKind::SymplecticEuler => Box::new(SymplecticEuler::default()),
-            IntegratorKind::Rk4 => Box::new(Rk4::default()),
-            IntegratorKind::ExplicitEuler => Box::new(ExplicitEuler::default()),
+            IntegratorKind::SymplecticEuler => Box::new(SymplecticEuler),
+            IntegratorKind::Rk4 => Box::new(Rk4),
+            IntegratorKind::ExplicitEuler => Box::new(ExplicitEuler),
         })
     }
 }

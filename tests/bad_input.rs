@@ -1,0 +1,111 @@
+//! Bad input fails with a typed error that names the parameter (and, for files, the file and
+//! the key), never a panic.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::uniform;
+use pipearm::arm::{ArmError, ArmModel, ArmOptions, Fidelity};
+use pipearm::beam::{BeamError, BeamModel, Material, SectionShape, Segment};
+use pipearm::scenario::{Scenario, ScenarioError};
+
+fn named(err: &BeamError) -> &str {
+    match err {
+        BeamError::InvalidParameter { name, .. } => name,
+        other => panic!("expected InvalidParameter, got {other}"),
+    }
+}
+
+#[test]
+fn beam_parameters_out_of_range_are_named() {
+    let mut spec = uniform(0.0, 1.0, 1.0, 10);
+    assert_eq!(named(&BeamModel::new(spec.clone()).unwrap_err()), "length_m");
+    spec.segments[0].length_m = -2.0;
+    assert_eq!(named(&BeamModel::new(spec).unwrap_err()), "length_m");
+    let mut spec = uniform(1.0, 1.0, 1.0, 10);
+    spec.segments[0].mass_per_length_kg_m = 0.0;
+    assert_eq!(named(&BeamModel::new(spec).unwrap_err()), "mass_per_length_kg_m");
+    let spec = uniform(1.0, 1.0, 1.0, 0);
+    assert_eq!(named(&BeamModel::new(spec).unwrap_err()), "elements");
+    let shape = SectionShape::SolidCircle { diameter_m: 0.1 };
+    let e =
+        Segment::from_shape(1.0, &shape, &Material { youngs_modulus_pa: -2e11, density_kg_m3: 7850.0 }).unwrap_err();
+    assert_eq!(named(&e), "youngs_modulus_pa");
+    let e = Segment::from_shape(1.0, &shape, &Material { youngs_modulus_pa: 2e11, density_kg_m3: 0.0 }).unwrap_err();
+    assert_eq!(named(&e), "density_kg_m3");
+    let e =
+        Segment::from_shape(1.0, &shape, &Material { youngs_modulus_pa: f64::NAN, density_kg_m3: 1.0 }).unwrap_err();
+    assert_eq!(named(&e), "youngs_modulus_pa");
+}
+
+#[test]
+fn masses_outside_the_arm_are_named() {
+    let spec = uniform(2.0, 1.0, 1.0, 10).with_mass("gripper", 2.5, 10.0, 0.0);
+    let e = BeamModel::new(spec).unwrap_err();
+    assert_eq!(named(&e), "masses.gripper.position_m");
+    assert!(e.to_string().contains("0 ..= 2"), "{e}");
+    let spec = uniform(2.0, 1.0, 1.0, 10).with_mass("hand", 1.0, -3.0, 0.0);
+    assert_eq!(named(&BeamModel::new(spec).unwrap_err()), "masses.hand.mass_kg");
+}
+
+#[test]
+fn more_modes_than_dofs_is_refused() {
+    let beam = BeamModel::new(uniform(2.0, 1.0, 1.0, 4)).unwrap();
+    let dofs = beam.dofs();
+    let e = ArmModel::new(beam, Fidelity::Modal { modes: dofs + 1 }, ArmOptions::default()).unwrap_err();
+    match &e {
+        ArmError::InvalidParameter { name, .. } => assert_eq!(name, "model.modes"),
+        other => panic!("unexpected {other}"),
+    }
+    assert!(e.to_string().contains(&format!("1 ..= {dofs}")), "{e}");
+    let beam = BeamModel::new(uniform(2.0, 1.0, 1.0, 4)).unwrap();
+    assert!(ArmModel::new(beam, Fidelity::Modal { modes: 0 }, ArmOptions::default()).is_err());
+    let beam = BeamModel::new(uniform(2.0, 1.0, 1.0, 4)).unwrap();
+    let options = ArmOptions { damping_ratios: vec![-0.1], ..ArmOptions::default() };
+    assert!(matches!(ArmModel::new(beam, Fidelity::Fe, options), Err(ArmError::InvalidParameter { .. })));
+}
+
+/// Writes the default scenario with `edit` applied to a temporary file.
+fn edited_default(tag: &str, edit: impl Fn(String) -> String) -> PathBuf {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+    let path = std::env::temp_dir().join(format!("pipearm-bad-{tag}-{}.toml", std::process::id()));
+    std::fs::write(&path, edit(text)).unwrap();
+    path
+}
+
+fn load_error(tag: &str, edit: impl Fn(String) -> String) -> (PathBuf, String) {
+    let path = edited_default(tag, edit);
+    let err: ScenarioError = Scenario::load(&path).unwrap_err();
+    let message = err.to_string();
+    std::fs::remove_file(&path).ok();
+    assert!(message.contains(&path.display().to_string()), "error does not name the file: {message}");
+    (path, message)
+}
+
+#[test]
+fn scenario_errors_name_file_key_and_range() {
+    let (_, m) = load_error("unknown", |t| t.replace("elements = 24", "elements = 24\nelement_count = 3"));
+    assert!(m.contains("element_count"), "{m}");
+    let (_, m) = load_error("missing", |t| t.replace("step_s = 0.002\n", ""));
+    assert!(m.contains("step_s"), "{m}");
+    let (_, m) = load_error("negative-step", |t| t.replace("step_s = 0.002", "step_s = -0.002"));
+    assert!(m.contains("time.step_s") && m.contains("0 < step_s"), "{m}");
+    let (_, m) = load_error("density", |t| t.replace("density_kg_m3 = 7850.0", "density_kg_m3 = -1.0"));
+    assert!(m.contains("arm.density_kg_m3"), "{m}");
+    let (_, m) = load_error("mass", |t| t.replace("position_m = 8.2", "position_m = 12.0"));
+    assert!(m.contains("arm.masses.hand.position_m") && m.contains("0 ..= 9"), "{m}");
+    let (_, m) = load_error("accel", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.9"));
+    assert!(m.contains("drive.ramp_fraction"), "{m}");
+    let (_, m) =
+        load_error("both-limits", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.2\naccel_deg_s2 = 3.0"));
+    assert!(m.contains("drive.limit") && m.contains("exactly one"), "{m}");
+    let (_, m) = load_error("integrator", |t| t.replace("rho_inf = 0.8", "rho_inf = 1.5"));
+    assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
+}
+
+#[test]
+fn scenario_modes_beyond_dofs_fail_at_load() {
+    let (_, m) = load_error("modes", |t| t.replace("modes = 3", "modes = 500"));
+    assert!(m.contains("model.modes") && m.contains("1 ..= 72"), "{m}");
+}

@@ -1,0 +1,99 @@
+//! Lifts of the default full-scale arm: modal reduction converging to the fe reference under
+//! each drive profile, and the drive torque against the energy balance.
+
+use std::path::Path;
+
+use pipearm::arm::{ArmOptions, ArmSample, ArmSimulation, Fidelity, HubDrive};
+use pipearm::drive::{MotionProfile, SCurveLimit, TrapezoidLimit};
+use pipearm::integrate::IntegratorKind;
+use pipearm::scenario::Scenario;
+
+fn default_scenario() -> Scenario {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap()
+}
+
+fn profiles() -> Vec<MotionProfile> {
+    let quarter = std::f64::consts::FRAC_PI_2;
+    vec![
+        MotionProfile::uniform(0.0, quarter, 15.0).unwrap(),
+        MotionProfile::trapezoidal(0.0, quarter, 15.0, TrapezoidLimit::RampFraction(0.2)).unwrap(),
+        MotionProfile::s_curve(0.0, quarter, 15.0, SCurveLimit::Fractions { ramp_fraction: 0.3, jerk_fraction: 0.25 })
+            .unwrap(),
+    ]
+}
+
+fn lift(
+    scenario: &Scenario,
+    fidelity: Fidelity,
+    options: ArmOptions,
+    profile: &MotionProfile,
+    end_s: f64,
+) -> Vec<ArmSample> {
+    let mut arm_scenario = scenario.clone();
+    arm_scenario.arm.options = options;
+    let arm = arm_scenario.arm_model(fidelity).unwrap();
+    let mut sim = ArmSimulation::new(arm, HubDrive::Prescribed(profile.clone()), IntegratorKind::default()).unwrap();
+    let mut out = Vec::new();
+    sim.run_until(end_s, 0.002, |s| out.push(s.clone())).unwrap();
+    out
+}
+
+/// max |a − b| / max |b| over a history of one scalar.
+fn history_error(a: &[ArmSample], b: &[ArmSample], pick: impl Fn(&ArmSample) -> f64) -> f64 {
+    let scale = b.iter().map(|s| pick(s).abs()).fold(0.0, f64::max);
+    a.iter().zip(b).map(|(x, y)| (pick(x) - pick(y)).abs()).fold(0.0, f64::max) / scale
+}
+
+#[test]
+fn modal_converges_to_fe_under_every_drive_profile() {
+    let scenario = default_scenario();
+    let options = scenario.arm.options.clone();
+    println!("| profile | n | tip deflection error | tip velocity error | torque error |");
+    println!("|---|---|---|---|---|");
+    for profile in profiles() {
+        let reference = lift(&scenario, Fidelity::Fe, options.clone(), &profile, 18.0);
+        let mut deflection_errors = Vec::new();
+        for n in [1, 2, 3, 4, 6] {
+            let run = lift(&scenario, Fidelity::Modal { modes: n }, options.clone(), &profile, 18.0);
+            let e_w = history_error(&run, &reference, |s| s.tip_deflection_hub_m[1]);
+            let e_v = history_error(&run, &reference, |s| s.tip_velocity_hub_m_s[1]);
+            let e_t = history_error(&run, &reference, |s| s.drive_torque_n_m);
+            println!("| {} | {n} | {e_w:.2e} | {e_v:.2e} | {e_t:.2e} |", profile.name());
+            deflection_errors.push(e_w);
+        }
+        for pair in deflection_errors.windows(2) {
+            assert!(pair[1] <= pair[0] * 1.05, "{}: error rose with n: {deflection_errors:?}", profile.name());
+        }
+        let rigid = lift(&scenario, Fidelity::Rigid, options.clone(), &profile, 18.0);
+        let e_rigid = history_error(&rigid, &reference, |s| s.tip_deflection_hub_m[1]);
+        assert!(e_rigid > 0.99, "a rigid arm has no deflection: error {e_rigid}");
+        assert!(deflection_errors[4] < 5e-3, "{}: 6 modes still off by {}", profile.name(), deflection_errors[4]);
+    }
+}
+
+#[test]
+fn drive_work_equals_the_change_of_energy() {
+    // Undamped arm, gravity on: ∫ τ θ̇ dt = ΔE (kinetic + strain + gravity) at every fidelity.
+    let scenario = default_scenario();
+    let options = ArmOptions { damping_ratios: vec![0.0], ..scenario.arm.options.clone() };
+    let profile = &profiles()[1];
+    for fidelity in [Fidelity::Rigid, Fidelity::Modal { modes: 4 }, Fidelity::Fe] {
+        let mut arm_scenario = scenario.clone();
+        arm_scenario.arm.options = options.clone();
+        let arm = arm_scenario.arm_model(fidelity).unwrap();
+        let mut sim = ArmSimulation::new(
+            arm,
+            HubDrive::Prescribed(profile.clone()),
+            pipearm::integrate::IntegratorKind::Newmark { beta: 0.25, gamma: 0.5 },
+        )
+        .unwrap();
+        let mut samples = Vec::new();
+        sim.run_until(16.0, 5e-4, |s| {
+            samples.push((s.t_s, s.drive_torque_n_m * s.hub.rate_rad_s, s.energies.total_j()))
+        })
+        .unwrap();
+        let work: f64 = samples.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
+        let delta_e = samples.last().unwrap().2 - samples[0].2;
+        assert!((work - delta_e).abs() < 1e-4 * delta_e.abs(), "{fidelity}: work {work} J vs ΔE {delta_e} J");
+    }
+}
