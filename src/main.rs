@@ -96,11 +96,11 @@ fn run(path: &Path, model: Option<Fidelity>, csv: Option<&Path>) -> Result<()> {
         scenario.time.step_s
     );
     println!("peak tip deflection {:.3} mm", 1e3 * summary.peak_tip_deflection_m);
-    println!(
-        "residual amplitude  {:.3} mm at {:.3} Hz",
-        1e3 * summary.residual_amplitude_m,
-        summary.residual_frequency_hz
-    );
+    let frequency = match summary.residual_frequency_hz {
+        f if f.is_finite() => format!("at {f:.3} Hz"),
+        _ => "(no oscillation)".to_string(),
+    };
+    println!("residual amplitude  {:.3} mm {frequency}", 1e3 * summary.residual_amplitude_m);
     println!("peak drive torque   {:.1} kN·m", 1e-3 * summary.peak_drive_torque_n_m);
     println!("wall time           {:.3} s ({:.0}x real time)", wall_s, scenario.duration_s() / wall_s);
     if let Some(csv) = csv {

@@ -228,7 +228,10 @@ fn beam_error(path: &Path, e: BeamError) -> ScenarioError {
     }
 }
 
+/// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
     let DriveError::InvalidParameter { name, .. } = &e;
-    invalid(path, &format!("drive.{name}"), e.to_string())
+    let key = name.replace("_rad", "_deg");
+    let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
+    invalid(path, &format!("drive.{key}"), message)
 }
