@@ -20,11 +20,11 @@ fn step_cost(c: &mut Criterion) {
     ];
     for fidelity in fidelities {
         let arm = scenario.arm_model(fidelity).unwrap();
-        let mut sim = ArmSimulation::new(arm, scenario.hub_drive().unwrap(), scenario.integrator).unwrap();
+        let mut sim = ArmSimulation::new(arm, scenario.hub_drive(), scenario.spec.integrator).unwrap();
         // Start mid-lift, where every term of the equations is active.
-        sim.run_until(5.0, scenario.time.step_s, |_| ()).unwrap();
+        sim.run_until(5.0, scenario.spec.time.step_s, |_| ()).unwrap();
         group.bench_function(BenchmarkId::from_parameter(fidelity), |b| {
-            b.iter(|| sim.step(scenario.time.step_s).unwrap())
+            b.iter(|| sim.step(scenario.spec.time.step_s).unwrap())
         });
     }
     group.finish();

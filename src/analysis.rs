@@ -1,38 +1,5 @@
-//! Quantities users judge a run by: peaks, residual vibration, its frequency, and the seed's
+//! Quantities users judge a run by: residual vibration, its frequency and decay, and the seed's
 //! [w/l] classification.
-
-use crate::arm::ArmSample;
-
-/// Summary of a lift.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LiftSummary {
-    /// Largest |tip deflection| (hub frame, transverse) over the run, m.
-    pub peak_tip_deflection_m: f64,
-    /// Half the peak-to-peak tip deflection after the drive stopped, m.
-    pub residual_amplitude_m: f64,
-    /// Residual vibration frequency from zero crossings about the final mean, Hz (NaN if fewer
-    /// than two crossings).
-    pub residual_frequency_hz: f64,
-    /// Largest |drive torque|, N·m.
-    pub peak_drive_torque_n_m: f64,
-}
-
-/// Summarises `samples`; the residual phase is every sample at or after `drive_end_s`.
-pub fn summarize(samples: &[ArmSample], drive_end_s: f64) -> LiftSummary {
-    let deflection = |s: &ArmSample| s.tip_deflection_hub_m[1];
-    let peak_tip_deflection_m = samples.iter().map(|s| deflection(s).abs()).fold(0.0, f64::max);
-    let peak_drive_torque_n_m = samples.iter().map(|s| s.drive_torque_n_m.abs()).fold(0.0, f64::max);
-    let residual: Vec<(f64, f64)> =
-        samples.iter().filter(|s| s.t_s >= drive_end_s).map(|s| (s.t_s, deflection(s))).collect();
-    let (lo, hi) = residual.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(_, v)| (lo.min(v), hi.max(v)));
-    let residual_amplitude_m = if residual.is_empty() { 0.0 } else { 0.5 * (hi - lo) };
-    LiftSummary {
-        peak_tip_deflection_m,
-        residual_amplitude_m,
-        residual_frequency_hz: crossing_frequency_hz(&residual),
-        peak_drive_torque_n_m,
-    }
-}
 
 /// Frequency of a decaying oscillation from its up-crossings of the mean of its last half, Hz.
 pub fn crossing_frequency_hz(series: &[(f64, f64)]) -> f64 {
@@ -49,6 +16,61 @@ pub fn crossing_frequency_hz(series: &[(f64, f64)]) -> f64 {
     match crossings.as_slice() {
         [first, .., last] => (crossings.len() - 1) as f64 / (last - first),
         _ => f64::NAN,
+    }
+}
+
+/// Residual vibration of a signal after the drive stopped.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Residual {
+    /// Half the peak-to-peak excursion, m.
+    pub amplitude_m: f64,
+    /// Dominant frequency from zero crossings, Hz (NaN if it does not oscillate).
+    pub frequency_hz: f64,
+    /// Logarithmic decrement between successive peaks (NaN if fewer than two peaks).
+    pub log_decrement: f64,
+    /// Damping ratio from it, ζ = δ / √(4π² + δ²).
+    pub damping_ratio: f64,
+    /// Time after the drive stops until the signal stays within 5 % of its largest excursion
+    /// about the final mean, s.
+    pub settling_time_s: f64,
+}
+
+/// Residual vibration of `series` (time, value) from `from_s` on.
+pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
+    let tail: Vec<(f64, f64)> = series.iter().copied().filter(|p| p.0 >= from_s).collect();
+    if tail.len() < 3 {
+        return Residual {
+            amplitude_m: 0.0,
+            frequency_hz: f64::NAN,
+            log_decrement: f64::NAN,
+            damping_ratio: f64::NAN,
+            settling_time_s: 0.0,
+        };
+    }
+    let (lo, hi) = tail.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
+    let last_half = &tail[tail.len() / 2..];
+    let mean = last_half.iter().map(|p| p.1).sum::<f64>() / last_half.len() as f64;
+    let peaks: Vec<f64> = tail
+        .windows(3)
+        .filter(|w| w[1].1 > w[0].1 && w[1].1 >= w[2].1 && w[1].1 > mean)
+        .map(|w| w[1].1 - mean)
+        .collect();
+    // Peaks well above the resolution of the final mean: down to a tenth of the first.
+    let first_peak = peaks.first().copied().unwrap_or(0.0);
+    let peaks: Vec<f64> = peaks.into_iter().take_while(|p| *p >= 0.1 * first_peak).collect();
+    let log_decrement = match peaks.as_slice() {
+        [first, .., last] if *last > 0.0 => (first / last).ln() / (peaks.len() - 1) as f64,
+        _ => f64::NAN,
+    };
+    let damping_ratio = log_decrement / (4.0 * std::f64::consts::PI.powi(2) + log_decrement.powi(2)).sqrt();
+    let excursion = tail.iter().map(|p| (p.1 - mean).abs()).fold(0.0, f64::max);
+    let last_out = tail.iter().rev().find(|p| (p.1 - mean).abs() > 0.05 * excursion).map_or(from_s, |p| p.0);
+    Residual {
+        amplitude_m: 0.5 * (hi - lo),
+        frequency_hz: crossing_frequency_hz(&tail),
+        log_decrement,
+        damping_ratio,
+        settling_time_s: last_out - from_s,
     }
 }
 
@@ -97,6 +119,24 @@ mod tests {
         let s: Vec<(f64, f64)> =
             (0..5000).map(|i| i as f64 * 1e-3).map(|t| (t, (std::f64::consts::TAU * f * t).sin() + 0.3)).collect();
         assert!((crossing_frequency_hz(&s) - f).abs() < 1e-3);
+    }
+
+    #[test]
+    fn residual_of_a_damped_sine() {
+        // x = A e^{-ζωt} sin(ω_d t): log decrement 2πζ/√(1−ζ²), frequency ω_d/2π.
+        let (zeta, f) = (0.02_f64, 3.0);
+        let w = std::f64::consts::TAU * f;
+        let wd = w * (1.0 - zeta * zeta).sqrt();
+        let s: Vec<(f64, f64)> =
+            (0..200_000).map(|i| i as f64 * 1e-4).map(|t| (t, (-zeta * w * t).exp() * (wd * t).sin())).collect();
+        let r = residual(&s, 0.0);
+        let exact = std::f64::consts::TAU * zeta / (1.0 - zeta * zeta).sqrt();
+        assert!((r.log_decrement / exact - 1.0).abs() < 1e-3, "{} vs {exact}", r.log_decrement);
+        assert!((r.damping_ratio / zeta - 1.0).abs() < 1e-3);
+        assert!((r.frequency_hz / (wd / std::f64::consts::TAU) - 1.0).abs() < 1e-3);
+        // e^{-ζωt} = 0.05 at t = ln 20 / ζω.
+        let settle = 20f64.ln() / (zeta * w);
+        assert!((r.settling_time_s - settle).abs() < 1.0 / f, "{} vs {settle}", r.settling_time_s);
     }
 
     #[test]

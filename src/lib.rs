@@ -1,13 +1,19 @@
 //! pipearm: flexible pipe-handling arms on oil rigs and the impacts they take on their rubber
 //! dampeners.
 //!
-//! Data flows one way: a description (scenario) → a model ([`beam`] reduced by [`arm`]) → the
-//! step loop ([`integrate`], driven by [`drive`]) → outputs. Physics functions are pure and in
-//! SI units; the conventions are stated in each module.
+//! Data flows one way: a [`scenario`] (with its [`robot`]) → a model ([`beam`] reduced by
+//! [`arm`]) → the step loop of a [`scene`] ([`integrate`], driven by [`drive`], with
+//! [`contact`]) → [`run`] series → ([`record`], [`analysis`]) → summary. Physics functions are
+//! pure and in SI units; the conventions are stated in each module.
 
 pub mod analysis;
 pub mod arm;
 pub mod beam;
+pub mod contact;
 pub mod drive;
 pub mod integrate;
+pub mod record;
+pub mod robot;
+pub mod run;
 pub mod scenario;
+pub mod scene;

@@ -1,19 +1,22 @@
-//! Scenario files (TOML): the arm, its drive, the model fidelity, the integrator and the time
-//! span. Every key is checked: unknown keys, missing keys and out-of-range values fail with the
-//! file, the key and what is allowed.
+//! Scenario files (TOML): robot, payload, drive, dampeners, model, integrator, time and outputs.
+//! Every key is checked: unknown keys, missing keys and out-of-range values fail with the file,
+//! the key and what is allowed, before anything runs or is written.
 //!
 //! Units are SI and stated in the key names; drive angles are in degrees (`*_deg`, `*_deg_s2`)
-//! because that is how rig engineers state them, and are converted to radians here.
+//! because that is how rig engineers state them, and are converted to radians here. Paths
+//! (`robot`) are relative to the scenario file.
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive};
-use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, Material, SectionShape, Segment};
+use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
+use crate::beam::{BeamModel, BeamSpec, ConcentratedMass};
+use crate::contact::ForceLaw;
 use crate::drive::{DriveError, MotionProfile, SCurveLimit, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
+use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 
 /// Errors reading or checking a scenario; each names the file.
 #[derive(Debug, Error)]
@@ -27,20 +30,35 @@ pub enum ScenarioError {
     /// A value outside its allowed range.
     #[error("{path}: key `{key}`: {message}")]
     Invalid { path: PathBuf, key: String, message: String },
+    /// In the robot the scenario names.
+    #[error("{path}: robot: {source}")]
+    Robot { path: PathBuf, source: RobotError },
 }
 
 /// A scenario as written in its file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct Scenario {
+pub struct ScenarioSpec {
     /// Name used in reports and output files.
     pub name: String,
-    /// The arm.
-    pub arm: ArmSpec,
+    /// URDF of the robot, relative to the scenario file.
+    pub robot: PathBuf,
+    /// What the gripper holds.
+    #[serde(default)]
+    pub payload: PayloadSpec,
     /// The hub motion.
     pub drive: DriveSpec,
+    /// Rubber dampeners.
+    #[serde(default)]
+    pub dampeners: Vec<DampenerSpec>,
+    /// How contact forces are computed.
+    #[serde(default)]
+    pub contact: ContactSpec,
     /// Model fidelity.
     pub model: Fidelity,
+    /// Physical options (stiffening, gravity).
+    #[serde(default)]
+    pub physics: PhysicsSpec,
     /// Time integrator (default generalized-α, ρ∞ = 0.8).
     #[serde(default)]
     pub integrator: IntegratorKind,
@@ -48,32 +66,114 @@ pub struct Scenario {
     pub time: TimeSpec,
 }
 
-/// An arm: segments from the hub out, concentrated masses, mesh and physical options.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ArmSpec {
-    /// Finite elements along the arm (the fe reference and the mesh the modes come from).
-    pub elements: usize,
-    /// Segments from the hub outwards.
-    pub segments: Vec<SegmentSpec>,
-    /// Hand, gripper, string and other lumped masses.
-    #[serde(default)]
-    pub masses: Vec<ConcentratedMass>,
-    /// Damping, stiffening, gravity and hub inertia.
-    #[serde(default)]
-    pub options: ArmOptions,
+/// The payload.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+pub enum PayloadSpec {
+    /// Nothing in the gripper.
+    #[default]
+    None,
+    /// A pipe string from the catalogue, clamped rigidly (lumped into the arm).
+    String {
+        #[serde(flatten)]
+        string: StringSpec,
+        /// Carried body whose station the string is clamped at (default `gripper`).
+        #[serde(default = "default_clamp_body")]
+        at: String,
+    },
+    /// One of the seed's lab blocks (1: 100 g, 2: 206 g, 3: 412 g) at the arm tip.
+    Block { block: u8 },
 }
 
-/// A uniform length of arm.
+fn default_clamp_body() -> String {
+    "gripper".into()
+}
+
+/// The seed's lab mass blocks, kg.
+pub const LAB_BLOCKS_KG: [f64; 3] = [0.100, 0.206, 0.412];
+
+/// Physical options of the arm model that belong to the scene, not the robot.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PhysicsSpec {
+    /// Geometric stiffening from centrifugal and gravity axial load (default on).
+    pub geometric_stiffening: bool,
+    /// Gravity, m/s².
+    pub gravity_m_s2: f64,
+}
+
+impl Default for PhysicsSpec {
+    fn default() -> Self {
+        PhysicsSpec { geometric_stiffening: true, gravity_m_s2: STANDARD_GRAVITY_M_S2 }
+    }
+}
+
+/// Which arm face touches a pad, named as seen with the arm horizontal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Face {
+    /// The +y face: the side the arm moves toward as the lift angle grows.
+    Upper,
+    /// The −y face.
+    Lower,
+}
+
+/// A rubber pad placed against the arm at a stop.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampenerSpec {
+    /// Name of the pad (the contact pair is reported as `arm–<name>`).
+    pub name: String,
+    /// Lift angle of the stop the pad is set against, deg.
+    pub angle_deg: f64,
+    /// Arm station the pad's centre faces, m.
+    pub station_m: f64,
+    /// Arm face it touches.
+    pub face: Face,
+    /// Clearance between that face and the pad with the undeformed arm at the stop, m.
+    pub gap_m: f64,
+    /// Pad thickness (normal to the face), m.
+    pub thickness_m: f64,
+    /// Pad extent along the arm, m.
+    pub length_m: f64,
+    /// Pad extent across the lift plane, m.
+    pub width_m: f64,
+    /// Force law of the rubber.
+    pub law: ForceLaw,
+}
+
+/// Contact response.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentSpec {
-    /// Length, m.
-    pub length_m: f64,
-    /// Section shape and dimensions.
-    pub section: SectionShape,
-    /// Material.
-    pub material: Material,
+pub struct ContactSpec {
+    /// `compliant` (the pad's force law, implicit in the arm step) or `rapier`.
+    #[serde(default)]
+    pub method: ContactMethod,
+    /// Mass of the pad body for the `rapier` method, kg.
+    #[serde(default = "default_pad_mass")]
+    pub pad_mass_kg: f64,
+}
+
+fn default_pad_mass() -> f64 {
+    1.0
+}
+
+impl Default for ContactSpec {
+    fn default() -> Self {
+        ContactSpec { method: ContactMethod::default(), pad_mass_kg: default_pad_mass() }
+    }
+}
+
+/// How contact forces are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactMethod {
+    /// The pad's force law, evaluated inside the implicit arm step from rapier's contact geometry.
+    #[default]
+    Compliant,
+    /// rapier's constraint solver against a pad body on a linear spring joint; the contact
+    /// impulse / dt is fed back to the arm.
+    Rapier,
 }
 
 /// Hub motion profiles; angles in degrees.
@@ -109,68 +209,197 @@ pub struct TimeSpec {
     pub settle_s: f64,
 }
 
+/// A checked scenario with its robot loaded.
+#[derive(Debug, Clone)]
+pub struct Scenario {
+    /// The file it came from.
+    pub path: PathBuf,
+    /// What the file says.
+    pub spec: ScenarioSpec,
+    /// The robot it names.
+    pub robot: Robot,
+    /// The hub motion, rad.
+    pub motion: MotionProfile,
+}
+
 impl Scenario {
-    /// Reads and checks a scenario file.
+    /// Reads and checks a scenario file and the robot it names.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        let scenario: Scenario =
+        let spec: ScenarioSpec =
             toml::from_str(&text).map_err(|e| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
-        scenario.validate(path)?;
+        Self::from_spec(path, spec)
+    }
+
+    /// Checks a spec as if read from `path` (robot paths resolve against its folder).
+    pub fn from_spec(path: &Path, spec: ScenarioSpec) -> Result<Self, ScenarioError> {
+        let robot_path = path.parent().unwrap_or(Path::new(".")).join(&spec.robot);
+        let robot = load_robot(&robot_path).map_err(|source| ScenarioError::Robot { path: path.into(), source })?;
+        let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
+        let scenario = Scenario { path: path.into(), spec, robot, motion };
+        scenario.validate()?;
         Ok(scenario)
     }
 
-    /// Checks the ranges serde cannot: builds every part once.
-    pub fn validate(&self, path: &Path) -> Result<(), ScenarioError> {
-        let beam = self.beam_spec().and_then(BeamModel::new).map_err(|e| beam_error(path, e))?;
-        if let Fidelity::Modal { modes } = self.model
+    fn invalid(&self, key: &str, message: impl Into<String>) -> ScenarioError {
+        ScenarioError::Invalid { path: self.path.clone(), key: key.into(), message: message.into() }
+    }
+
+    /// Checks the ranges serde cannot, building each part once.
+    fn validate(&self) -> Result<(), ScenarioError> {
+        let spec = &self.spec;
+        let beam =
+            self.beam_spec().and_then(|b| BeamModel::new(b).map_err(|e| self.invalid("payload", e.to_string())))?;
+        if let Fidelity::Modal { modes } = spec.model
             && !(1..=beam.dofs()).contains(&modes)
         {
-            let allowed = format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.dofs());
-            return Err(invalid(path, "model.modes", allowed));
+            return Err(self.invalid(
+                "model.modes",
+                format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.dofs()),
+            ));
         }
-        self.motion().map_err(|e| drive_error(path, e))?;
-        self.integrator.build().map_err(|e| invalid(path, "integrator", e.to_string()))?;
-        let t = self.time;
-        if !(t.step_s.is_finite() && t.step_s > 0.0 && t.step_s <= 1.0) {
-            return Err(invalid(path, "time.step_s", format!("{} is outside 0 < step_s <= 1", t.step_s)));
+        self.check_drive_limits()?;
+        spec.integrator.build().map_err(|e| self.invalid("integrator", e.to_string()))?;
+        let t = spec.time;
+        if !(t.step_s.is_finite() && t.step_s > 0.0 && t.step_s <= 0.1) {
+            return Err(self.invalid("time.step_s", format!("{} is outside 0 < step_s <= 0.1", t.step_s)));
         }
-        if !(t.settle_s.is_finite() && t.settle_s >= 0.0) {
-            return Err(invalid(path, "time.settle_s", format!("{} is outside settle_s >= 0", t.settle_s)));
+        if !(t.settle_s.is_finite() && (0.0..=3600.0).contains(&t.settle_s)) {
+            return Err(self.invalid("time.settle_s", format!("{} is outside 0 <= settle_s <= 3600", t.settle_s)));
+        }
+        let g = spec.physics.gravity_m_s2;
+        if !(g.is_finite() && (0.0..=100.0).contains(&g)) {
+            return Err(self.invalid("physics.gravity_m_s2", format!("{g} is outside 0 ..= 100")));
+        }
+        if !(spec.contact.pad_mass_kg.is_finite() && spec.contact.pad_mass_kg > 0.0) {
+            return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", spec.contact.pad_mass_kg)));
+        }
+        spec.dampeners.iter().enumerate().try_for_each(|(i, d)| self.check_dampener(i, d))
+    }
+
+    fn check_drive_limits(&self) -> Result<(), ScenarioError> {
+        let (lo, hi) = self.robot.lift.limits_rad;
+        for (key, angle) in [("drive.start_deg", self.motion.start_rad()), ("drive.end_deg", self.motion.end_rad())] {
+            if !(lo - 1e-9..=hi + 1e-9).contains(&angle) {
+                let allowed = format!(
+                    "{:.3} is outside the lift joint's limits {:.3} ..= {:.3} deg",
+                    angle.to_degrees(),
+                    lo.to_degrees(),
+                    hi.to_degrees()
+                );
+                return Err(self.invalid(key, allowed));
+            }
         }
         Ok(())
     }
 
-    /// The beam description.
-    pub fn beam_spec(&self) -> Result<BeamSpec, BeamError> {
-        let segments = self
-            .arm
-            .segments
-            .iter()
-            .map(|s| Segment::from_shape(s.length_m, &s.section, &s.material))
-            .collect::<Result<Vec<_>, _>>()?;
-        let spec = BeamSpec { segments, masses: self.arm.masses.clone(), elements: self.arm.elements };
-        spec.validate()?;
-        Ok(spec)
+    fn check_dampener(&self, i: usize, d: &DampenerSpec) -> Result<(), ScenarioError> {
+        let key = |k: &str| format!("dampeners[{i}].{k}");
+        let length = self.robot.arm.length_m();
+        if !(d.station_m.is_finite() && (0.0..=length).contains(&d.station_m)) {
+            return Err(
+                self.invalid(&key("station_m"), format!("{} is outside 0 ..= {length} (the arm length)", d.station_m))
+            );
+        }
+        if !(d.angle_deg.is_finite() && (-180.0..=180.0).contains(&d.angle_deg)) {
+            return Err(self.invalid(&key("angle_deg"), format!("{} is outside -180 ..= 180", d.angle_deg)));
+        }
+        if !(d.gap_m.is_finite() && (0.0..=1.0).contains(&d.gap_m)) {
+            return Err(self.invalid(&key("gap_m"), format!("{} is outside 0 ..= 1", d.gap_m)));
+        }
+        for (name, v) in [("thickness_m", d.thickness_m), ("length_m", d.length_m), ("width_m", d.width_m)] {
+            if !(v.is_finite() && v > 0.0 && v <= 5.0) {
+                return Err(self.invalid(&key(name), format!("{v} is outside 0 < {name} <= 5")));
+            }
+        }
+        d.law.validate().map_err(|(name, v, allowed)| {
+            self.invalid(&key(&format!("law.{name}")), format!("{v} is outside {allowed}"))
+        })
     }
 
-    /// The arm model at the scenario's fidelity.
+    /// The payload as concentrated masses on the arm.
+    pub fn payload_masses(&self) -> Result<Vec<ConcentratedMass>, ScenarioError> {
+        Ok(match &self.spec.payload {
+            PayloadSpec::None => Vec::new(),
+            PayloadSpec::String { string, at } => {
+                let s = self.pipe_string()?.expect("a string payload");
+                let body = self.robot.body(at).ok_or_else(|| {
+                    let names: Vec<_> = self.robot.carried.iter().map(|b| b.name.as_str()).collect();
+                    self.invalid("payload.at", format!("`{at}` is not a link on the arm: allowed {}", names.join(", ")))
+                })?;
+                let _ = string;
+                vec![ConcentratedMass {
+                    name: format!("string {}", s.pipe.size),
+                    position_m: body.station_m,
+                    mass_kg: s.mass_kg(),
+                    rotary_inertia_kg_m2: s.transverse_inertia_kg_m2(),
+                }]
+            }
+            PayloadSpec::Block { block } => {
+                let mass_kg = *LAB_BLOCKS_KG
+                    .get((*block as usize).wrapping_sub(1))
+                    .ok_or_else(|| self.invalid("payload.block", format!("{block}: allowed 1, 2, 3")))?;
+                // A cube of steel: side from its mass, inertia m a²/6.
+                let side = (mass_kg / 7850.0).cbrt();
+                vec![ConcentratedMass {
+                    name: format!("block {block}"),
+                    position_m: self.robot.arm.length_m(),
+                    mass_kg,
+                    rotary_inertia_kg_m2: mass_kg * side * side / 6.0,
+                }]
+            }
+        })
+    }
+
+    /// The clamped pipe string, if the payload is one.
+    pub fn pipe_string(&self) -> Result<Option<PipeString>, ScenarioError> {
+        match &self.spec.payload {
+            PayloadSpec::String { string, .. } => PipeString::from_spec(string)
+                .map(Some)
+                .map_err(|source| ScenarioError::Robot { path: self.path.clone(), source }),
+            _ => Ok(None),
+        }
+    }
+
+    /// The beam description: robot plus payload.
+    pub fn beam_spec(&self) -> Result<BeamSpec, ScenarioError> {
+        let payload = self.payload_masses()?;
+        self.robot.beam_spec(&payload).map_err(|e| self.invalid("payload", e.to_string()))
+    }
+
+    /// Arm options: the robot's damping and hub, the scene's physics.
+    pub fn arm_options(&self) -> ArmOptions {
+        ArmOptions {
+            damping_ratios: self.robot.arm.damping_ratios.clone(),
+            geometric_stiffening: self.spec.physics.geometric_stiffening,
+            gravity_m_s2: self.spec.physics.gravity_m_s2,
+            hub_inertia_kg_m2: self.robot.arm.hub_inertia_kg_m2,
+        }
+    }
+
+    /// The arm model at `fidelity`.
     pub fn arm_model(&self, fidelity: Fidelity) -> Result<ArmModel, ArmError> {
-        ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm.options.clone())
-    }
-
-    /// The hub motion in radians.
-    pub fn motion(&self) -> Result<MotionProfile, DriveError> {
-        self.drive.motion()
+        let spec = self.beam_spec().map_err(|e| ArmError::InvalidParameter {
+            name: "payload".into(),
+            value: f64::NAN,
+            allowed: e.to_string(),
+        })?;
+        ArmModel::new(BeamModel::new(spec)?, fidelity, self.arm_options())
     }
 
     /// The hub drive.
-    pub fn hub_drive(&self) -> Result<HubDrive, DriveError> {
-        Ok(HubDrive::Prescribed(self.motion()?))
+    pub fn hub_drive(&self) -> HubDrive {
+        HubDrive::Prescribed(self.motion.clone())
+    }
+
+    /// Time the drive ends, s.
+    pub fn drive_end_s(&self) -> f64 {
+        self.motion.duration_s()
     }
 
     /// Total simulated time: drive plus settling, s.
     pub fn duration_s(&self) -> f64 {
-        self.motion().map_or(0.0, |m| m.duration_s()) + self.time.settle_s
+        self.drive_end_s() + self.spec.time.settle_s
     }
 }
 
@@ -202,9 +431,7 @@ impl DriveSpec {
                 let limit = match (accel_deg_s2, jerk_deg_s3, ramp_fraction, jerk_fraction) {
                     (Some(a), Some(j), None, None) => SCurveLimit::AccelJerk { accel_rad_s2: r(a), jerk_rad_s3: r(j) },
                     (None, None, Some(f), Some(jf)) => SCurveLimit::Fractions { ramp_fraction: f, jerk_fraction: jf },
-                    _ => {
-                        return Err(either("accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction"));
-                    }
+                    _ => return Err(either("accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction")),
                 };
                 MotionProfile::s_curve(r(start_deg), r(end_deg), duration_s, limit)
             }
@@ -217,21 +444,10 @@ fn either(allowed: &str) -> DriveError {
     DriveError::InvalidParameter { name: "limit", value: f64::NAN, allowed: format!("exactly one of: {allowed}") }
 }
 
-fn invalid(path: &Path, key: &str, message: String) -> ScenarioError {
-    ScenarioError::Invalid { path: path.into(), key: key.into(), message }
-}
-
-fn beam_error(path: &Path, e: BeamError) -> ScenarioError {
-    match e {
-        BeamError::InvalidParameter { ref name, .. } => invalid(path, &format!("arm.{name}"), e.to_string()),
-        other => invalid(path, "arm", other.to_string()),
-    }
-}
-
 /// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
     let DriveError::InvalidParameter { name, .. } = &e;
     let key = name.replace("_rad", "_deg");
     let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
-    invalid(path, &format!("drive.{key}"), message)
+    ScenarioError::Invalid { path: path.into(), key: format!("drive.{key}"), message }
 }

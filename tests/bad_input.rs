@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use common::uniform;
 use pipearm::arm::{ArmError, ArmModel, ArmOptions, Fidelity};
 use pipearm::beam::{BeamError, BeamModel, Material, SectionShape, Segment};
-use pipearm::scenario::{Scenario, ScenarioError};
+use pipearm::scenario::Scenario;
 
 fn named(err: &BeamError) -> &str {
     match err {
@@ -66,46 +66,58 @@ fn more_modes_than_dofs_is_refused() {
     assert!(matches!(ArmModel::new(beam, Fidelity::Fe, options), Err(ArmError::InvalidParameter { .. })));
 }
 
-/// Writes the default scenario with `edit` applied to a temporary file.
+/// Writes the default scenario with `edit` applied to a temporary file beside it (so that its
+/// relative robot path still resolves).
 fn edited_default(tag: &str, edit: impl Fn(String) -> String) -> PathBuf {
-    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
-    let path = std::env::temp_dir().join(format!("pipearm-bad-{tag}-{}.toml", std::process::id()));
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let text = std::fs::read_to_string(dir.join("default.toml")).unwrap();
+    let path = dir.join(format!(".bad-{tag}-{}.toml", std::process::id()));
     std::fs::write(&path, edit(text)).unwrap();
     path
 }
 
-fn load_error(tag: &str, edit: impl Fn(String) -> String) -> (PathBuf, String) {
+fn load_error(tag: &str, edit: impl Fn(String) -> String) -> String {
     let path = edited_default(tag, edit);
-    let err: ScenarioError = Scenario::load(&path).unwrap_err();
-    let message = err.to_string();
+    let result = Scenario::load(&path);
     std::fs::remove_file(&path).ok();
+    let message = match result {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("{tag}: the edited scenario loaded"),
+    };
     assert!(message.contains(&path.display().to_string()), "error does not name the file: {message}");
-    (path, message)
+    message
 }
 
 #[test]
 fn scenario_errors_name_file_key_and_range() {
-    let (_, m) = load_error("unknown", |t| t.replace("elements = 24", "elements = 24\nelement_count = 3"));
-    assert!(m.contains("element_count"), "{m}");
-    let (_, m) = load_error("missing", |t| t.replace("step_s = 0.002\n", ""));
+    let m = load_error("unknown", |t| t.replace("modes = 3", "modes = 3\nmode_count = 3"));
+    assert!(m.contains("mode_count"), "{m}");
+    let m = load_error("missing", |t| t.replace("step_s = 0.002\n", ""));
     assert!(m.contains("step_s"), "{m}");
-    let (_, m) = load_error("negative-step", |t| t.replace("step_s = 0.002", "step_s = -0.002"));
+    let m = load_error("negative-step", |t| t.replace("step_s = 0.002", "step_s = -0.002"));
     assert!(m.contains("time.step_s") && m.contains("0 < step_s"), "{m}");
-    let (_, m) = load_error("density", |t| t.replace("density_kg_m3 = 7850.0", "density_kg_m3 = -1.0"));
-    assert!(m.contains("arm.density_kg_m3"), "{m}");
-    let (_, m) = load_error("mass", |t| t.replace("position_m = 8.2", "position_m = 12.0"));
-    assert!(m.contains("arm.masses.hand.position_m") && m.contains("0 ..= 9"), "{m}");
-    let (_, m) = load_error("accel", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.9"));
+    let m = load_error("accel", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.9"));
     assert!(m.contains("drive.ramp_fraction"), "{m}");
-    let (_, m) =
-        load_error("both-limits", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.2\naccel_deg_s2 = 3.0"));
+    let m = load_error("both-limits", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.2\naccel_deg_s2 = 3.0"));
     assert!(m.contains("drive.limit") && m.contains("exactly one"), "{m}");
-    let (_, m) = load_error("integrator", |t| t.replace("rho_inf = 0.8", "rho_inf = 1.5"));
+    let m = load_error("integrator", |t| t.replace("rho_inf = 0.8", "rho_inf = 1.5"));
     assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
-}
-
-#[test]
-fn scenario_modes_beyond_dofs_fail_at_load() {
-    let (_, m) = load_error("modes", |t| t.replace("modes = 3", "modes = 500"));
+    let m = load_error("modes", |t| t.replace("modes = 3", "modes = 500"));
     assert!(m.contains("model.modes") && m.contains("1 ..= 72"), "{m}");
+    let m = load_error("beyond-limit", |t| t.replace("end_deg = 90.0", "end_deg = 120.0"));
+    assert!(m.contains("drive.end_deg") && m.contains("limits"), "{m}");
+    let m = load_error("pipe", |t| t.replace("size = \"2-7/8\"", "size = \"2-1/2\""));
+    assert!(m.contains("payload.string.size") && m.contains("2-3/8"), "{m}");
+    let m = load_error("pad-station", |t| t.replace("station_m = 8.2", "station_m = 12.0"));
+    assert!(m.contains("dampeners[0].station_m") && m.contains("0 ..= 9"), "{m}");
+    let m = load_error("pad-law", |t| t.replace("restitution = 0.6", "restitution = 1.6"));
+    assert!(m.contains("dampeners[0].law.restitution") && m.contains("0 < e <= 1"), "{m}");
+    let m = load_error("pad-gap", |t| t.replace("gap_m = 0.0002", "gap_m = -0.001"));
+    assert!(m.contains("dampeners[0].gap_m"), "{m}");
+    let m = load_error("law-kind", |t| t.replace("kind = \"hunt-crossley\"", "kind = \"hertz\""));
+    assert!(m.contains("hertz") && m.contains("hunt-crossley"), "{m}");
+    let m = load_error("robot-missing", |t| t.replace("pipe_arm.urdf", "no_such_arm.urdf"));
+    assert!(m.contains("no_such_arm.urdf") && m.contains("cannot read"), "{m}");
+    let m = load_error("block", |t| t.replace("kind = \"string\"\nsize = \"2-7/8\"", "kind = \"block\"\nblock = 4"));
+    assert!(m.contains("payload.block") && m.contains("1, 2, 3"), "{m}");
 }

@@ -3,7 +3,8 @@
 
 use std::path::Path;
 
-use pipearm::arm::{ArmOptions, ArmSample, ArmSimulation, Fidelity, HubDrive};
+use pipearm::arm::{ArmModel, ArmOptions, ArmSample, ArmSimulation, Fidelity, HubDrive};
+use pipearm::beam::BeamModel;
 use pipearm::drive::{MotionProfile, SCurveLimit, TrapezoidLimit};
 use pipearm::integrate::IntegratorKind;
 use pipearm::scenario::Scenario;
@@ -22,6 +23,10 @@ fn profiles() -> Vec<MotionProfile> {
     ]
 }
 
+fn arm(scenario: &Scenario, fidelity: Fidelity, options: ArmOptions) -> ArmModel {
+    ArmModel::new(BeamModel::new(scenario.beam_spec().unwrap()).unwrap(), fidelity, options).unwrap()
+}
+
 fn lift(
     scenario: &Scenario,
     fidelity: Fidelity,
@@ -29,9 +34,7 @@ fn lift(
     profile: &MotionProfile,
     end_s: f64,
 ) -> Vec<ArmSample> {
-    let mut arm_scenario = scenario.clone();
-    arm_scenario.arm.options = options;
-    let arm = arm_scenario.arm_model(fidelity).unwrap();
+    let arm = arm(scenario, fidelity, options);
     let mut sim = ArmSimulation::new(arm, HubDrive::Prescribed(profile.clone()), IntegratorKind::default()).unwrap();
     let mut out = Vec::new();
     sim.run_until(end_s, 0.002, |s| out.push(s.clone())).unwrap();
@@ -47,7 +50,7 @@ fn history_error(a: &[ArmSample], b: &[ArmSample], pick: impl Fn(&ArmSample) -> 
 #[test]
 fn modal_converges_to_fe_under_every_drive_profile() {
     let scenario = default_scenario();
-    let options = scenario.arm.options.clone();
+    let options = scenario.arm_options();
     println!("| profile | n | tip deflection error | tip velocity error | torque error |");
     println!("|---|---|---|---|---|");
     for profile in profiles() {
@@ -75,12 +78,10 @@ fn modal_converges_to_fe_under_every_drive_profile() {
 fn drive_work_equals_the_change_of_energy() {
     // Undamped arm, gravity on: ∫ τ θ̇ dt = ΔE (kinetic + strain + gravity) at every fidelity.
     let scenario = default_scenario();
-    let options = ArmOptions { damping_ratios: vec![0.0], ..scenario.arm.options.clone() };
+    let options = ArmOptions { damping_ratios: vec![0.0], ..scenario.arm_options() };
     let profile = &profiles()[1];
     for fidelity in [Fidelity::Rigid, Fidelity::Modal { modes: 4 }, Fidelity::Fe] {
-        let mut arm_scenario = scenario.clone();
-        arm_scenario.arm.options = options.clone();
-        let arm = arm_scenario.arm_model(fidelity).unwrap();
+        let arm = arm(&scenario, fidelity, options.clone());
         let mut sim = ArmSimulation::new(
             arm,
             HubDrive::Prescribed(profile.clone()),

@@ -2,7 +2,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{ArmModel, Energies};
+use super::{ArmContact, ArmModel, Energies};
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -45,6 +45,8 @@ pub struct ArmSystem<'a> {
     pub drive: &'a HubDrive,
     /// External loads.
     pub load: &'a GeneralizedLoad,
+    /// Pad contacts, evaluated on the current configuration.
+    pub contacts: &'a [ArmContact],
 }
 
 impl ArmSystem<'_> {
@@ -76,6 +78,10 @@ impl ArmSystem<'_> {
         let mut f = -(&a.damping * qd) - 2.0 * w * (&a.gyroscopic * qd) - stiff * q;
         f += w * w * &a.axial_moment - g * s * &a.axial_mass - g * c * &a.transverse_mass;
         f += &self.load.modal;
+        for c in self.contacts {
+            let state = c.state(hub, q, qd);
+            f += state.force_n * &state.direction;
+        }
         f
     }
 
@@ -85,7 +91,8 @@ impl ArmSystem<'_> {
         let g = a.options.gravity_m_s2;
         let (s, c) = hub.angle_rad.sin_cos();
         let spin = 2.0 * hub.rate_rad_s * (&a.axial_moment + &a.spin_mass * q).dot(qd);
-        applied_n_m + self.load.hub_torque_n_m - spin + self.gravity_moment(s, c, q, g)
+        let contact: f64 = self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum();
+        applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
     }
 
     /// Moment of gravity about the pivot on the deformed arm, N·m.
@@ -175,8 +182,17 @@ impl Dynamics for ArmSystem<'_> {
         let (hub, q, qd) = self.split(t, x, v);
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, co) = hub.angle_rad.sin_cos();
-        let k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
-        let c_qq = &a.damping + 2.0 * w * &a.gyroscopic;
+        let mut k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
+        let mut c_qq = &a.damping + 2.0 * w * &a.gyroscopic;
+        for contact in self.contacts {
+            let state = contact.state(&hub, &q, &qd);
+            let (k_c, c_c) = contact.stiffness_damping(&state);
+            if k_c != 0.0 || c_c != 0.0 {
+                let ww = &state.direction * state.direction.transpose();
+                k_qq += k_c * &ww;
+                c_qq += c_c * ww;
+            }
+        }
         if let HubDrive::Prescribed(_) = self.drive {
             k.copy_from(&(k_qq + hub.accel_rad_s2 * &a.gyroscopic));
             c.copy_from(&c_qq);
@@ -200,6 +216,6 @@ impl Dynamics for ArmSystem<'_> {
     }
 
     fn is_linear(&self) -> bool {
-        matches!(self.drive, HubDrive::Prescribed(_))
+        matches!(self.drive, HubDrive::Prescribed(_)) && self.contacts.is_empty()
     }
 }

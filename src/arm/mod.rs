@@ -21,6 +21,7 @@
 //! Without geometric stiffening K_c and K_g are dropped (W = M_tr): the classic model that goes
 //! unstable once the spin rate exceeds the first frequency.
 
+mod contact;
 mod dynamics;
 mod sim;
 
@@ -32,6 +33,7 @@ use crate::beam::{BeamError, BeamModel, ModalBasis};
 use crate::drive::DriveError;
 use crate::integrate::IntegrateError;
 
+pub use contact::{ArmContact, ContactState, PointContact};
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubDrive};
 pub use sim::{ArmSample, ArmSimulation, Energies};
 
@@ -219,6 +221,12 @@ impl ArmModel {
                 why: format!("the arm buckles under its own weight at {:.1} deg", angle_rad.to_degrees()),
             })
         })
+    }
+
+    /// Slope (section rotation) at station `x_m`, rad.
+    pub fn slope_at(&self, x_m: f64, q: &DVector<f64>) -> f64 {
+        let [_, _, phi] = self.beam.point_rows(x_m);
+        (self.basis.transpose() * phi).dot(q)
     }
 
     /// Tip (u, v, slope) rows over q.

@@ -2,7 +2,7 @@
 
 use nalgebra::DVector;
 
-use super::{ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
+use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
 use crate::drive::DriveState;
 use crate::integrate::{Integrator, IntegratorKind, State};
 
@@ -55,6 +55,8 @@ pub struct ArmSimulation {
     pub drive: HubDrive,
     /// External load held over the next step.
     pub load: GeneralizedLoad,
+    /// Pad contacts active over the next step (their force follows the arm within the step).
+    pub contacts: Vec<ArmContact>,
     integrator: Box<dyn Integrator>,
     state: State,
     rate_jumps: Vec<(f64, f64)>,
@@ -98,11 +100,35 @@ impl ArmSimulation {
             HubDrive::Free { .. } => Vec::new(),
         };
         let load = GeneralizedLoad::zero(n);
-        let system = ArmSystem { arm: &arm, drive: &drive, load: &load };
+        let system = ArmSystem { arm: &arm, drive: &drive, load: &load, contacts: &[] };
         let state = State::consistent(&system, 0.0, x, v)?;
-        let mut sim = ArmSimulation { integrator: integrator.build()?, arm, drive, load, state, rate_jumps };
+        let mut sim = ArmSimulation {
+            integrator: integrator.build()?,
+            arm,
+            drive,
+            load,
+            contacts: Vec::new(),
+            state,
+            rate_jumps,
+        };
         sim.apply_rate_jumps_up_to(0.0)?;
         Ok(sim)
+    }
+
+    /// Sets the hub's rate of a free hub (an initial condition), rad/s.
+    pub fn set_free_hub_rate(&mut self, rate_rad_s: f64) -> Result<(), ArmError> {
+        if !matches!(self.drive, HubDrive::Free { .. }) {
+            return Err(ArmError::InvalidParameter {
+                name: "hub rate".into(),
+                value: rate_rad_s,
+                allowed: "a free hub only (a prescribed hub follows its drive)".into(),
+            });
+        }
+        self.state.v[0] = rate_rad_s;
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+        self.state.refresh_acceleration(&system)?;
+        self.integrator.reset();
+        Ok(())
     }
 
     /// Current time, s.
@@ -135,7 +161,7 @@ impl ArmSimulation {
             self.state.t += h;
             return Ok(());
         }
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
         self.integrator.step(&system, &mut self.state, h)?;
         Ok(())
     }
@@ -160,7 +186,7 @@ impl ArmSimulation {
                 .solve(&(-jump * coupling))
                 .ok_or(ArmError::Integrate(crate::integrate::IntegrateError::SingularMatrix { t: tj }))?;
             self.state.v += dqd;
-            let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
+            let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
             self.state.refresh_acceleration(&system)?;
             self.integrator.reset();
         }
@@ -187,7 +213,7 @@ impl ArmSimulation {
 
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
         let s = &self.state;
         let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
         let qdd = match self.drive {
@@ -219,7 +245,7 @@ impl ArmSimulation {
 
     /// Deformed centreline in the world at `samples` + 1 stations from pivot to tip, m.
     pub fn centreline_world_m(&self, samples: usize) -> Vec<[f64; 2]> {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load };
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
         let (hub, q, _) = system.split(self.state.t, &self.state.x, &self.state.v);
         let (sn, cs) = hub.angle_rad.sin_cos();
         let l = self.arm.length_m();

@@ -1,0 +1,312 @@
+//! URDF reading: urdf-rs for the standard elements, a second XML pass (roxmltree) for
+//! pipearm's flexible-link element, which urdf-rs silently drops.
+//!
+//! ```xml
+//! <robot name="..." xmlns:pipearm="https://pipearm.dev/urdf/1">
+//!   <link name="arm" pipearm:flexible="true">
+//!     <pipearm:flexible elements="24" damping_ratios="0.01" hub_inertia_kg_m2="50">
+//!       <pipearm:segment length_m="9" youngs_modulus_pa="2.06e11" density_kg_m3="7850"
+//!                        section="hollow_rectangle" width_m="0.25" depth_m="0.5" wall_m="0.0125"/>
+//!     </pipearm:flexible>
+//!   </link>
+//! ```
+
+use std::collections::{HashSet, VecDeque};
+use std::path::Path;
+
+use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
+
+use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
+use crate::beam::{BeamModel, Material, SectionShape};
+
+/// Namespace of pipearm's URDF extensions.
+pub const PIPEARM_NS: &str = "https://pipearm.dev/urdf/1";
+
+/// Reads a robot from a URDF file, with its flexible-link parameters.
+pub fn load_robot(path: &Path) -> Result<Robot, RobotError> {
+    let parse = |message: String| RobotError::Parse { path: path.into(), message };
+    let text = std::fs::read_to_string(path).map_err(|e| parse(format!("cannot read: {e}")))?;
+    let urdf = urdf_rs::read_from_string(&text).map_err(|e| parse(format!("not valid URDF: {e}")))?;
+    let doc = roxmltree::Document::parse(&text).map_err(|e| parse(format!("not well-formed XML: {e}")))?;
+    let ctx = Context { path };
+    let arm = ctx.flexible_link(&doc)?;
+    let lift = ctx.lift_joint(&urdf, &arm.name)?;
+    let carried = ctx.carried_bodies(&urdf, &arm)?;
+    let base_shapes = urdf
+        .links
+        .iter()
+        .find(|l| l.name == lift.1)
+        .map(|l| ctx.collision_shapes(l, &Isometry3::identity()))
+        .transpose()?
+        .unwrap_or_default();
+    let robot = Robot { name: urdf.name.clone(), source: path.into(), lift: lift.0, arm, carried, base_shapes };
+    ctx.check_beam(&robot)?;
+    Ok(robot)
+}
+
+struct Context<'p> {
+    path: &'p Path,
+}
+
+impl Context<'_> {
+    fn invalid(&self, key: impl Into<String>, message: impl Into<String>) -> RobotError {
+        RobotError::InvalidInFile { path: self.path.into(), key: key.into(), message: message.into() }
+    }
+
+    /// The one link marked `pipearm:flexible="true"` and its parameters.
+    fn flexible_link(&self, doc: &roxmltree::Document<'_>) -> Result<FlexibleLink, RobotError> {
+        let links: Vec<_> = doc.descendants().filter(|n| n.has_tag_name("link")).collect();
+        let marked: Vec<_> = links.iter().filter(|l| l.attribute((PIPEARM_NS, "flexible")) == Some("true")).collect();
+        for l in &links {
+            let has_params = l.children().any(|c| c.has_tag_name((PIPEARM_NS, "flexible")));
+            if has_params && !marked.iter().any(|m| m.id() == l.id()) {
+                let name = l.attribute("name").unwrap_or("?");
+                return Err(self.invalid(
+                    format!("link[{name}]"),
+                    "has <pipearm:flexible> parameters but is not marked pipearm:flexible=\"true\"",
+                ));
+            }
+        }
+        let [link] = marked.as_slice() else {
+            return Err(self.invalid(
+                "link@pipearm:flexible",
+                format!("exactly one link must be marked pipearm:flexible=\"true\" (xmlns:pipearm=\"{PIPEARM_NS}\"); found {}", marked.len()),
+            ));
+        };
+        let name = link.attribute("name").unwrap_or_default().to_string();
+        let key = format!("link[{name}].pipearm:flexible");
+        let params = link
+            .children()
+            .find(|c| c.has_tag_name((PIPEARM_NS, "flexible")))
+            .ok_or_else(|| self.invalid(&key, "the link is marked flexible but has no <pipearm:flexible> element"))?;
+        self.only_attributes(&params, &key, &["elements", "damping_ratios", "hub_inertia_kg_m2"])?;
+        let elements = self.number(&params, &key, "elements")?;
+        if elements.fract() != 0.0 || !(1.0..=2000.0).contains(&elements) {
+            return Err(self.invalid(format!("{key}@elements"), format!("{elements}: allowed an integer 1 ..= 2000")));
+        }
+        let damping_ratios = self.numbers(&params, &key, "damping_ratios")?;
+        if damping_ratios.is_empty() || damping_ratios.iter().any(|z| !(0.0..2.0).contains(z)) {
+            return Err(self.invalid(format!("{key}@damping_ratios"), "allowed one or more ratios 0 <= ratio < 2"));
+        }
+        let hub_inertia_kg_m2 = self.number(&params, &key, "hub_inertia_kg_m2")?;
+        if hub_inertia_kg_m2 < 0.0 {
+            return Err(self.invalid(format!("{key}@hub_inertia_kg_m2"), format!("{hub_inertia_kg_m2}: allowed >= 0")));
+        }
+        let segments = params
+            .children()
+            .filter(|c| c.is_element())
+            .enumerate()
+            .map(|(i, c)| self.segment(&c, &format!("{key}.segment[{i}]")))
+            .collect::<Result<Vec<_>, _>>()?;
+        if segments.is_empty() {
+            return Err(self.invalid(&key, "needs at least one <pipearm:segment>"));
+        }
+        Ok(FlexibleLink { name, segments, elements: elements as usize, damping_ratios, hub_inertia_kg_m2 })
+    }
+
+    fn segment(&self, node: &roxmltree::Node<'_, '_>, key: &str) -> Result<ArmSegment, RobotError> {
+        if !node.has_tag_name((PIPEARM_NS, "segment")) {
+            return Err(self
+                .invalid(key, format!("unexpected element <{}>: allowed <pipearm:segment>", node.tag_name().name())));
+        }
+        let kind = node.attribute("section").ok_or_else(|| {
+            self.invalid(
+                format!("{key}@section"),
+                "missing: allowed solid_circle, solid_rectangle, hollow_rectangle, tube",
+            )
+        })?;
+        let dims: &[&str] = match kind {
+            "solid_circle" => &["diameter_m"],
+            "solid_rectangle" => &["width_m", "depth_m"],
+            "hollow_rectangle" => &["width_m", "depth_m", "wall_m"],
+            "tube" => &["outer_diameter_m", "wall_m"],
+            other => {
+                return Err(self.invalid(
+                    format!("{key}@section"),
+                    format!("`{other}`: allowed solid_circle, solid_rectangle, hollow_rectangle, tube"),
+                ));
+            }
+        };
+        let mut allowed = vec!["section", "length_m", "youngs_modulus_pa", "density_kg_m3"];
+        allowed.extend_from_slice(dims);
+        self.only_attributes(node, key, &allowed)?;
+        let n = |name| self.number(node, key, name);
+        let section = match kind {
+            "solid_circle" => SectionShape::SolidCircle { diameter_m: n("diameter_m")? },
+            "solid_rectangle" => SectionShape::SolidRectangle { width_m: n("width_m")?, depth_m: n("depth_m")? },
+            "hollow_rectangle" => {
+                SectionShape::HollowRectangle { width_m: n("width_m")?, depth_m: n("depth_m")?, wall_m: n("wall_m")? }
+            }
+            _ => SectionShape::Tube { outer_diameter_m: n("outer_diameter_m")?, wall_m: n("wall_m")? },
+        };
+        let material = Material { youngs_modulus_pa: n("youngs_modulus_pa")?, density_kg_m3: n("density_kg_m3")? };
+        let segment = ArmSegment { length_m: n("length_m")?, section, material };
+        crate::beam::Segment::from_shape(segment.length_m, &section, &material)
+            .and_then(|s| crate::beam::BeamSpec::uniform(s, 1).validate())
+            .map_err(|e| self.invalid(key, e.to_string()))?;
+        Ok(segment)
+    }
+
+    /// Rejects attributes outside `allowed` (a typo must not silently become a default).
+    fn only_attributes(&self, node: &roxmltree::Node<'_, '_>, key: &str, allowed: &[&str]) -> Result<(), RobotError> {
+        match node.attributes().find(|a| a.namespace().is_none() && !allowed.contains(&a.name())) {
+            Some(a) => Err(self
+                .invalid(format!("{key}@{}", a.name()), format!("unknown attribute: allowed {}", allowed.join(", ")))),
+            None => Ok(()),
+        }
+    }
+
+    fn number(&self, node: &roxmltree::Node<'_, '_>, key: &str, name: &str) -> Result<f64, RobotError> {
+        let text = node.attribute(name).ok_or_else(|| self.invalid(format!("{key}@{name}"), "missing"))?;
+        text.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| self.invalid(format!("{key}@{name}"), format!("`{text}` is not a finite number")))
+    }
+
+    fn numbers(&self, node: &roxmltree::Node<'_, '_>, key: &str, name: &str) -> Result<Vec<f64>, RobotError> {
+        let text = node.attribute(name).ok_or_else(|| self.invalid(format!("{key}@{name}"), "missing"))?;
+        text.split_whitespace()
+            .map(|t| t.parse::<f64>().ok().filter(|v| v.is_finite()))
+            .collect::<Option<Vec<_>>>()
+            .ok_or_else(|| self.invalid(format!("{key}@{name}"), format!("`{text}` is not a list of numbers")))
+    }
+
+    /// The revolute joint about z whose child is the arm; returns it and its parent link.
+    fn lift_joint(&self, urdf: &urdf_rs::Robot, arm: &str) -> Result<(LiftJoint, String), RobotError> {
+        let joint = urdf.joints.iter().find(|j| j.child.link == arm).ok_or_else(|| {
+            self.invalid(format!("link[{arm}]"), "the flexible link must be the child of the lift joint (revolute)")
+        })?;
+        let key = format!("joint[{}]", joint.name);
+        if joint.joint_type != urdf_rs::JointType::Revolute {
+            return Err(self.invalid(&key, format!("type {:?}: the lift joint must be revolute", joint.joint_type)));
+        }
+        if joint.axis.xyz.0 != [0.0, 0.0, 1.0] {
+            return Err(self.invalid(
+                format!("{key}.axis"),
+                format!("{:?}: the lift joint turns about z (0 0 1)", joint.axis.xyz.0),
+            ));
+        }
+        if joint.origin.rpy.0 != [0.0, 0.0, 0.0] {
+            return Err(self.invalid(format!("{key}.origin@rpy"), "must be 0 0 0: the arm lies along x at zero angle"));
+        }
+        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
+        if lower >= upper || lower.is_nan() || upper.is_nan() || joint.limit.effort <= 0.0 {
+            return Err(self.invalid(format!("{key}.limit"), "needs lower < upper (rad) and effort > 0 (N·m)"));
+        }
+        let lift = LiftJoint {
+            name: joint.name.clone(),
+            pivot_m: joint.origin.xyz.0,
+            limits_rad: (lower, upper),
+            effort_n_m: joint.limit.effort,
+        };
+        Ok((lift, joint.parent.link.clone()))
+    }
+
+    /// Links hanging from the arm through fixed or prismatic joints, in the arm frame.
+    fn carried_bodies(&self, urdf: &urdf_rs::Robot, arm: &FlexibleLink) -> Result<Vec<CarriedBody>, RobotError> {
+        let mut frames = VecDeque::from([(arm.name.clone(), Isometry3::identity(), Mount::Fixed)]);
+        let mut seen = HashSet::from([arm.name.clone()]);
+        let mut bodies = Vec::new();
+        while let Some((parent, parent_pose, parent_mount)) = frames.pop_front() {
+            for joint in urdf.joints.iter().filter(|j| j.parent.link == parent) {
+                let key = format!("joint[{}]", joint.name);
+                let mount = match joint.joint_type {
+                    urdf_rs::JointType::Fixed => parent_mount,
+                    urdf_rs::JointType::Prismatic => Mount::Prismatic,
+                    ref other => {
+                        return Err(self.invalid(
+                            &key,
+                            format!("type {other:?}: links on the arm hang on fixed or prismatic joints"),
+                        ));
+                    }
+                };
+                if !seen.insert(joint.child.link.clone()) {
+                    return Err(self.invalid(&key, "the link tree has a loop"));
+                }
+                let pose = parent_pose * pose_of(&joint.origin);
+                let link =
+                    urdf.links.iter().find(|l| l.name == joint.child.link).ok_or_else(|| {
+                        self.invalid(&key, format!("child link `{}` is not defined", joint.child.link))
+                    })?;
+                bodies.push(self.carried_body(link, &pose, mount, arm.length_m())?);
+                frames.push_back((link.name.clone(), pose, mount));
+            }
+        }
+        Ok(bodies)
+    }
+
+    fn carried_body(
+        &self,
+        link: &urdf_rs::Link,
+        pose: &Isometry3<f64>,
+        mount: Mount,
+        length_m: f64,
+    ) -> Result<CarriedBody, RobotError> {
+        let key = format!("link[{}].inertial", link.name);
+        let cg = pose * pose_of(&link.inertial.origin) * Point3::origin();
+        let (mass_kg, izz) = (link.inertial.mass.value, link.inertial.inertia.izz);
+        if !(mass_kg.is_finite() && mass_kg >= 0.0) {
+            return Err(self.invalid(format!("{key}.mass@value"), format!("{mass_kg}: allowed >= 0 kg")));
+        }
+        if !(izz.is_finite() && izz >= 0.0) {
+            return Err(self.invalid(format!("{key}.inertia@izz"), format!("{izz}: allowed >= 0 kg·m²")));
+        }
+        if mass_kg > 0.0 && !(0.0..=length_m).contains(&cg.x) {
+            return Err(self.invalid(
+                format!("link[{}]", link.name),
+                format!("centre of mass at arm station {:.3} m is off the arm: allowed 0 ..= {length_m} m", cg.x),
+            ));
+        }
+        Ok(CarriedBody {
+            name: link.name.clone(),
+            mount,
+            station_m: cg.x,
+            lateral_m: cg.y,
+            mass_kg,
+            rotary_inertia_kg_m2: izz,
+            shapes: self.collision_shapes(link, pose)?,
+        })
+    }
+
+    fn collision_shapes(&self, link: &urdf_rs::Link, pose: &Isometry3<f64>) -> Result<Vec<PlacedShape>, RobotError> {
+        link.collision
+            .iter()
+            .map(|c| {
+                let placed = pose * pose_of(&c.origin);
+                let shape = match &c.geometry {
+                    urdf_rs::Geometry::Box { size } => Shape::Box { half_extents_m: size.0.map(|s| s / 2.0) },
+                    urdf_rs::Geometry::Cylinder { radius, length } => {
+                        Shape::Cylinder { radius_m: *radius, half_length_m: length / 2.0 }
+                    }
+                    urdf_rs::Geometry::Sphere { radius } => Shape::Sphere { radius_m: *radius },
+                    _ => {
+                        return Err(self.invalid(
+                            format!("link[{}].collision.geometry", link.name),
+                            "unsupported: allowed box, cylinder, sphere",
+                        ));
+                    }
+                };
+                let (roll, pitch, yaw) = placed.rotation.euler_angles();
+                let t = placed.translation.vector;
+                Ok(PlacedShape { position_m: [t.x, t.y, t.z], rpy_rad: [roll, pitch, yaw], shape })
+            })
+            .collect()
+    }
+
+    /// Builds the beam once so that a bad combination (e.g. a mass off the arm) fails here.
+    fn check_beam(&self, robot: &Robot) -> Result<(), RobotError> {
+        robot
+            .beam_spec(&[])
+            .and_then(BeamModel::new)
+            .map(|_| ())
+            .map_err(|e| self.invalid(format!("link[{}]", robot.arm.name), e.to_string()))
+    }
+}
+
+fn pose_of(p: &urdf_rs::Pose) -> Isometry3<f64> {
+    let [x, y, z] = p.xyz.0;
+    let [r, pi, ya] = p.rpy.0;
+    Isometry3::from_parts(Translation3::new(x, y, z), UnitQuaternion::from_euler_angles(r, pi, ya))
+}

@@ -1,0 +1,197 @@
+//! One run of a scenario: scene → step loop → series → summary.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::analysis::{Residual, StiffnessClass, residual};
+use crate::arm::Fidelity;
+use crate::contact::{Impact, ImpactTracker};
+use crate::scenario::Scenario;
+use crate::scene::{Scene, SceneError};
+
+/// Time histories of a run, one entry per step (the initial state included).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Series {
+    /// Time, s.
+    pub t_s: Vec<f64>,
+    /// Hub angle, rad.
+    pub hub_angle_rad: Vec<f64>,
+    /// Hub rate, rad/s.
+    pub hub_rate_rad_s: Vec<f64>,
+    /// Hub acceleration, rad/s².
+    pub hub_accel_rad_s2: Vec<f64>,
+    /// Tip displacement in the hub frame [axial, transverse], m.
+    pub tip_deflection_m: Vec<[f64; 2]>,
+    /// Tip velocity relative to the hub frame [axial, transverse], m/s.
+    pub tip_velocity_m_s: Vec<[f64; 2]>,
+    /// Drive torque, N·m.
+    pub drive_torque_n_m: Vec<f64>,
+    /// Contact force per pad (outer index: pad), N.
+    pub pad_force_n: Vec<Vec<f64>>,
+}
+
+/// Per contact pair: its peak force, impulse and impacts.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairSummary {
+    /// `arm–<pad>`.
+    pub pair: String,
+    /// Largest force, N.
+    pub peak_force_n: f64,
+    /// When, s.
+    pub peak_time_s: f64,
+    /// Peak force over the weight of the string (or payload) held, N/N (NaN without one).
+    pub peak_force_per_payload_weight: f64,
+    /// ∫ F dt over the run, N·s.
+    pub impulse_n_s: f64,
+    /// Number of impacts.
+    pub impact_count: usize,
+    /// Each impact.
+    pub impacts: Vec<Impact>,
+}
+
+/// What a run reports.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunSummary {
+    /// Scenario name.
+    pub scenario: String,
+    /// Robot name.
+    pub robot: String,
+    /// Payload mass, kg.
+    pub payload_kg: f64,
+    /// Model fidelity used.
+    pub model: String,
+    /// Integrator.
+    pub integrator: String,
+    /// Contact method.
+    pub contact_method: String,
+    /// Time step, s.
+    pub step_s: f64,
+    /// Steps taken.
+    pub steps: usize,
+    /// Simulated time, s.
+    pub simulated_s: f64,
+    /// Wall time of the step loop, s (not part of the physics; varies run to run).
+    pub wall_time_s: f64,
+    /// Static tip deflection ratio of the horizontal arm under gravity with its payload.
+    pub static_w_over_l: f64,
+    /// The seed's class for that ratio.
+    pub stiffness_class: String,
+    /// Largest |transverse tip deflection| in the hub frame, m.
+    pub max_tip_deflection_m: f64,
+    /// That over the arm length.
+    pub max_w_over_l: f64,
+    /// Largest |drive torque|, N·m, and when.
+    pub peak_drive_torque_n_m: f64,
+    /// Time of the peak drive torque, s.
+    pub peak_drive_torque_time_s: f64,
+    /// Residual tip vibration after the drive stops.
+    pub residual: Residual,
+    /// Contact pairs.
+    pub pairs: Vec<PairSummary>,
+}
+
+/// Runs a scenario at `fidelity` (its own if `None`).
+pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummary, Series), SceneError> {
+    let fidelity = fidelity.unwrap_or(scenario.spec.model);
+    let mut scene = Scene::with_fidelity(scenario, fidelity)?;
+    let h = scenario.spec.time.step_s;
+    let end = scenario.duration_s();
+    let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize;
+    let mut series = Series { pad_force_n: vec![Vec::with_capacity(steps + 1); scene.pads.len()], ..Series::default() };
+    let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
+    let started = Instant::now();
+    record(&scene, &mut series, &mut trackers);
+    for i in 0..steps {
+        let step = h.min(end - i as f64 * h);
+        scene.step(step)?;
+        record(&scene, &mut series, &mut trackers);
+    }
+    let wall_time_s = started.elapsed().as_secs_f64();
+    let summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
+    Ok((summary, series))
+}
+
+fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
+    let s = scene.arm.sample();
+    series.t_s.push(s.t_s);
+    series.hub_angle_rad.push(s.hub.angle_rad);
+    series.hub_rate_rad_s.push(s.hub.rate_rad_s);
+    series.hub_accel_rad_s2.push(s.hub.accel_rad_s2);
+    series.tip_deflection_m.push(s.tip_deflection_hub_m);
+    series.tip_velocity_m_s.push(s.tip_velocity_hub_m_s);
+    series.drive_torque_n_m.push(s.drive_torque_n_m);
+    for ((pad, forces), tracker) in scene.pads.iter().zip(&mut series.pad_force_n).zip(trackers) {
+        forces.push(pad.force_n);
+        tracker.push(s.t_s, pad.force_n);
+    }
+}
+
+fn summarize(
+    scenario: &Scenario,
+    scene: &Scene,
+    series: &Series,
+    trackers: &[ImpactTracker],
+    fidelity: Fidelity,
+    steps: usize,
+    wall_time_s: f64,
+) -> Result<RunSummary, SceneError> {
+    let arm = &scene.arm.arm;
+    let g = scenario.spec.physics.gravity_m_s2;
+    let w_static =
+        arm.beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2).map_err(crate::arm::ArmError::from)?;
+    let length = arm.length_m();
+    let payload_kg: f64 = scenario.payload_masses()?.iter().map(|m| m.mass_kg).sum();
+    let deflection: Vec<(f64, f64)> =
+        series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect();
+    let max_tip_deflection_m = deflection.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let (torque_i, peak_torque) = series
+        .drive_torque_n_m
+        .iter()
+        .enumerate()
+        .fold((0, 0.0_f64), |best, (i, t)| if t.abs() > best.1 { (i, t.abs()) } else { best });
+    let pairs = scene
+        .pads
+        .iter()
+        .zip(trackers)
+        .map(|(pad, tracker)| {
+            let impacts = tracker.impacts();
+            let peak = impacts.iter().copied().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n));
+            let peak_force_n = peak.map_or(0.0, |p| p.peak_force_n);
+            PairSummary {
+                pair: format!("arm–{}", pad.spec.name),
+                peak_force_n,
+                peak_time_s: peak.map_or(f64::NAN, |p| p.peak_time_s),
+                peak_force_per_payload_weight: if payload_kg > 0.0 {
+                    peak_force_n / (payload_kg * g)
+                } else {
+                    f64::NAN
+                },
+                impulse_n_s: impacts.iter().map(|i| i.impulse_n_s).sum(),
+                impact_count: impacts.len(),
+                impacts,
+            }
+        })
+        .collect();
+    let w_over_l = w_static / length;
+    Ok(RunSummary {
+        scenario: scenario.spec.name.clone(),
+        robot: scenario.robot.name.clone(),
+        payload_kg,
+        model: fidelity.to_string(),
+        integrator: format!("{:?}", scenario.spec.integrator),
+        contact_method: format!("{:?}", scenario.spec.contact.method).to_lowercase(),
+        step_s: scenario.spec.time.step_s,
+        steps,
+        simulated_s: series.t_s.last().copied().unwrap_or(0.0),
+        wall_time_s,
+        static_w_over_l: w_over_l,
+        stiffness_class: StiffnessClass::of_ratio(w_over_l).describe().to_string(),
+        max_tip_deflection_m,
+        max_w_over_l: max_tip_deflection_m / length,
+        peak_drive_torque_n_m: peak_torque,
+        peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
+        residual: residual(&deflection, scenario.drive_end_s()),
+        pairs,
+    })
+}

@@ -1,0 +1,151 @@
+//! rapier shapes of the arm and what it carries, and their poses from the arm's state.
+
+use nalgebra::DVector;
+use rapier3d_f64::math::glamx::EulerRot;
+use rapier3d_f64::prelude::*;
+
+use crate::arm::ArmModel;
+use crate::drive::DriveState;
+use crate::robot::{Mount, Shape};
+use crate::scenario::{PayloadSpec, Scenario, ScenarioError};
+
+/// A rapier shape riding on the arm at a station.
+#[derive(Debug, Clone)]
+pub struct ArmPiece {
+    /// Part name (`arm`, a link name, `string`).
+    pub name: String,
+    /// True for the finite-element boxes of the arm itself.
+    pub is_arm_element: bool,
+    /// Station of the shape's centre, m.
+    pub station_m: f64,
+    /// Offset of its centre across the arm (body y), m.
+    pub lateral_m: f64,
+    /// Offset normal to the lift plane (body z), m.
+    pub normal_offset_m: f64,
+    /// Rotation of the shape relative to the section, about body z, rad (plus a fixed tilt for
+    /// cylinders), applied before the section's rotation.
+    pub local_rotation: Rotation,
+    /// Section depth (arm elements), m.
+    pub depth_m: f64,
+    /// Half extents of its bounding box in its own frame, m (for drawing).
+    pub half_extents_m: [f64; 3],
+    pub(crate) body: RigidBodyHandle,
+    pub(crate) collider: ColliderHandle,
+}
+
+/// A piece's pose, for drawing.
+#[derive(Debug, Clone)]
+pub struct PiecePose {
+    /// Part name.
+    pub name: String,
+    /// World pose.
+    pub pose: Pose,
+    /// Half extents, m.
+    pub half_extents_m: [f64; 3],
+}
+
+impl ArmPiece {
+    fn new(
+        name: &str,
+        station_m: f64,
+        lateral_m: f64,
+        normal_offset_m: f64,
+        local_rotation: Rotation,
+        half: [f64; 3],
+    ) -> Self {
+        ArmPiece {
+            name: name.into(),
+            is_arm_element: false,
+            station_m,
+            lateral_m,
+            normal_offset_m,
+            local_rotation,
+            depth_m: 0.0,
+            half_extents_m: half,
+            body: RigidBodyHandle::invalid(),
+            collider: ColliderHandle::invalid(),
+        }
+    }
+
+    /// Station and body-y of a world point on this piece (the piece moves rigidly with the
+    /// section at its station).
+    pub fn station_of(&self, collider: &Collider, world: [f64; 3]) -> (f64, f64) {
+        let pose = collider.position();
+        let local = pose.rotation.inverse() * (Vector::new(world[0], world[1], world[2]) - pose.translation);
+        // Back into the section frame: undo the piece's own rotation.
+        let section = self.local_rotation * local;
+        (self.station_m + section.x, self.lateral_m + section.y)
+    }
+}
+
+/// Every shape of the scene that rides on the arm, with its collision shape.
+pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape)>, ScenarioError> {
+    let robot = &scenario.robot;
+    let beam = crate::beam::BeamModel::new(scenario.beam_spec()?).map_err(|e| ScenarioError::Invalid {
+        path: scenario.path.clone(),
+        key: "robot".into(),
+        message: e.to_string(),
+    })?;
+    let (width, depth) = (robot.arm.width_m(), robot.arm.depth_m());
+    let mut pieces = Vec::new();
+    for el in &beam.elements {
+        let half = [0.5 * el.length_m, 0.5 * depth, 0.5 * width];
+        let mut piece = ArmPiece::new("arm", el.x0_m + 0.5 * el.length_m, 0.0, 0.0, Rotation::IDENTITY, half);
+        piece.is_arm_element = true;
+        piece.depth_m = depth;
+        pieces.push((piece, SharedShape::cuboid(half[0], half[1], half[2])));
+    }
+    for body in &robot.carried {
+        for placed in &body.shapes {
+            let [x, y, z] = placed.position_m;
+            let rpy = placed.rpy_rad;
+            let rotation = Rotation::from_euler(EulerRot::ZYX, rpy[2], rpy[1], rpy[0]);
+            let (shape, rotation, half) = match placed.shape {
+                Shape::Box { half_extents_m: h } => (SharedShape::cuboid(h[0], h[1], h[2]), rotation, h),
+                // parry's cylinders run along y, URDF's along z.
+                Shape::Cylinder { radius_m, half_length_m } => (
+                    SharedShape::cylinder(half_length_m, radius_m),
+                    rotation * Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2),
+                    [radius_m, half_length_m, radius_m],
+                ),
+                Shape::Sphere { radius_m } => (SharedShape::ball(radius_m), rotation, [radius_m; 3]),
+            };
+            pieces.push((ArmPiece::new(&body.name, x, y, z, rotation, half), shape));
+        }
+    }
+    if let (PayloadSpec::String { at, .. }, Some(string)) = (&scenario.spec.payload, scenario.pipe_string()?) {
+        let clamp = robot.body(at).expect("checked when the payload was resolved");
+        // The string's axis runs along the arm, midway between the jaws.
+        let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount == Mount::Prismatic).collect();
+        let lateral = if jaws.is_empty() {
+            clamp.lateral_m
+        } else {
+            jaws.iter().map(|j| j.lateral_m).sum::<f64>() / jaws.len() as f64
+        };
+        let radius = 0.5 * string.pipe.outer_diameter_m;
+        let half_length = 0.5 * string.length_m;
+        let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
+        pieces.push((
+            ArmPiece::new("string", clamp.station_m, lateral, 0.0, along_arm, [half_length, radius, radius]),
+            SharedShape::cylinder(half_length, radius),
+        ));
+    }
+    Ok(pieces)
+}
+
+/// World pose of a piece from the arm's state: the section at its station carries it rigidly.
+pub fn pose_piece(arm: &ArmModel, piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m: [f64; 3]) -> Pose {
+    let x = piece.station_m;
+    let [u, v] = arm.deflection_at(x, q);
+    let slope = arm.slope_at(x, q);
+    let y = piece.lateral_m;
+    let body = [x + u - y * slope, y + v];
+    let (s, c) = hub.angle_rad.sin_cos();
+    let translation = Vector::new(
+        pivot_m[0] + c * body[0] - s * body[1],
+        pivot_m[1] + s * body[0] + c * body[1],
+        pivot_m[2] + piece.normal_offset_m,
+    );
+    let rotation = Rotation::from_rotation_z(hub.angle_rad + slope) * piece.local_rotation;
+    Pose::from_parts(translation, rotation)
+}

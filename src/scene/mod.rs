@@ -1,0 +1,433 @@
+//! The rapier world around the arm and the coupling loop.
+//!
+//! The arm's dynamics live in [`ArmSimulation`] (floating frame, modal or FE). rapier holds its
+//! geometry: each finite element is a kinematic box posed from the deformed centreline every
+//! step, and the bodies the arm carries (hand, gripper, jaws, a rigidly clamped string) are
+//! kinematic shapes riding on their stations. The dampeners are rubber pads.
+//!
+//! One step, top to bottom:
+//! 1. pose every kinematic shape from the arm's state;
+//! 2. `compliant`: rapier's narrow phase finds, per pad, the deepest point of the arm within
+//!    reach; it becomes a [`PointContact`] whose force law the implicit arm step evaluates on the
+//!    arm's configuration at the end of the step (no staggering, no added-mass trap);
+//!    `rapier`: the last rapier step's contact impulse / dt is applied to the arm as a load;
+//! 3. advance the arm;
+//! 4. `rapier`: move the kinematic shapes to the new pose and step rapier (the pad is a body on
+//!    a spring joint);
+//! 5. measure each pad's force.
+
+mod geometry;
+
+use rapier3d_f64::prelude::*;
+
+use crate::arm::{ArmError, ArmSimulation, GeneralizedLoad, PointContact};
+use crate::drive::DriveState;
+use crate::scenario::{ContactMethod, DampenerSpec, Face, Scenario, ScenarioError};
+use geometry::{ArmPiece, pose_piece, shapes_of_robot};
+
+pub use geometry::PiecePose;
+
+/// The arm's shapes touch the pads and nothing else (not each other, not the ground).
+const ARM_GROUPS: InteractionGroups = InteractionGroups::new(Group::GROUP_1, Group::GROUP_2, InteractionTestMode::And);
+/// The pads touch the arm's shapes.
+const PAD_GROUPS: InteractionGroups = InteractionGroups::new(Group::GROUP_2, Group::GROUP_1, InteractionTestMode::And);
+/// Kinematic arm shapes against fixed pads (`compliant`) or dynamic pads (`rapier`).
+const PAD_CONTACT_TYPES: ActiveCollisionTypes =
+    ActiveCollisionTypes::DYNAMIC_KINEMATIC.union(ActiveCollisionTypes::KINEMATIC_FIXED);
+
+/// A rubber pad and what the scene knows of it.
+#[derive(Debug, Clone)]
+pub struct Pad {
+    /// Its description.
+    pub spec: DampenerSpec,
+    /// Unit normal of its face in the world (X, Y), pointing at the arm.
+    pub normal_world: [f64; 2],
+    /// World position of its face centre, m.
+    pub face_centre_m: [f64; 3],
+    body: RigidBodyHandle,
+    collider: ColliderHandle,
+    /// Closing speed at first touch of the current impact, m/s.
+    impact_speed_m_s: f64,
+    /// Force at the end of the last step, N.
+    pub force_n: f64,
+    /// Point of application of that force (world X, Y), m.
+    pub point_m: [f64; 2],
+    /// Name of the arm part touching it.
+    pub touching: Option<String>,
+    /// The pad's mounting spring (`rapier` method).
+    spring: Option<PadSpring>,
+}
+
+/// A pad body's linear spring–damper to its rest position (`rapier` method).
+#[derive(Debug, Clone, Copy)]
+struct PadSpring {
+    rest_m: [f64; 3],
+    stiffness_n_m: f64,
+    damping_n_s_m: f64,
+}
+
+fn pad_error(scenario: &Scenario, spec: &DampenerSpec, message: &str) -> ScenarioError {
+    ScenarioError::Invalid {
+        path: scenario.path.clone(),
+        key: format!("dampeners.{}", spec.name),
+        message: message.into(),
+    }
+}
+
+/// The rapier world, the arm and the pads.
+pub struct Scene {
+    /// The arm.
+    pub arm: ArmSimulation,
+    /// The pads.
+    pub pads: Vec<Pad>,
+    /// How contact forces are computed.
+    pub method: ContactMethod,
+    world: PhysicsWorld,
+    pieces: Vec<ArmPiece>,
+    pivot_m: [f64; 3],
+    rapier_load: Vec<(usize, f64, f64, [f64; 2])>,
+}
+
+/// Errors building or stepping a scene.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// In the scenario.
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+    /// In the arm.
+    #[error(transparent)]
+    Arm(#[from] ArmError),
+}
+
+impl Scene {
+    /// Builds the world of a scenario at its own fidelity.
+    pub fn new(scenario: &Scenario) -> Result<Self, SceneError> {
+        Self::with_fidelity(scenario, scenario.spec.model)
+    }
+
+    /// Builds the world of a scenario at `fidelity`.
+    pub fn with_fidelity(scenario: &Scenario, fidelity: crate::arm::Fidelity) -> Result<Self, SceneError> {
+        let arm_model = scenario.arm_model(fidelity)?;
+        let arm = ArmSimulation::new(arm_model, scenario.hub_drive(), scenario.spec.integrator)?;
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
+        world.integration_parameters.dt = scenario.spec.time.step_s;
+        let pivot_m = scenario.robot.lift.pivot_m;
+        let pieces = shapes_of_robot(scenario)?
+            .into_iter()
+            .map(|(piece, shape)| {
+                let body = world.insert_body(RigidBodyBuilder::kinematic_position_based());
+                let collider = ColliderBuilder::new(shape)
+                    .active_collision_types(PAD_CONTACT_TYPES)
+                    .collision_groups(ARM_GROUPS)
+                    .friction(0.0);
+                let collider = world.insert_collider(collider, Some(body));
+                ArmPiece { body, collider, ..piece }
+            })
+            .collect();
+        world.insert_body(RigidBodyBuilder::fixed());
+        let ground = ColliderBuilder::cuboid(50.0, 0.5, 50.0)
+            .translation(Vector::new(0.0, -0.5, 0.0))
+            .collision_groups(InteractionGroups::new(Group::GROUP_3, Group::NONE, InteractionTestMode::And));
+        world.insert_collider(ground, None);
+        let method = scenario.spec.contact.method;
+        let mut scene = Scene { arm, pads: Vec::new(), method, world, pieces, pivot_m, rapier_load: Vec::new() };
+        for spec in &scenario.spec.dampeners {
+            let pad = scene.insert_pad(spec, scenario)?;
+            scene.pads.push(pad);
+        }
+        scene.pose_pieces(false);
+        scene.world.detect_collisions(&(), &());
+        Ok(scene)
+    }
+
+    /// Places a pad against the undeformed arm at its stop, `gap_m` from the named face.
+    fn insert_pad(&mut self, spec: &DampenerSpec, scenario: &Scenario) -> Result<Pad, ScenarioError> {
+        let theta = spec.angle_deg.to_radians();
+        let (s, c) = theta.sin_cos();
+        let half_depth = 0.5 * self.arm_depth_at(spec.station_m);
+        let sign = match spec.face {
+            Face::Upper => 1.0,
+            Face::Lower => -1.0,
+        };
+        // Body-frame y of the pad's face and centre; the normal points back at the arm.
+        let face_y = sign * (half_depth + spec.gap_m);
+        let centre_y = face_y + sign * 0.5 * spec.thickness_m;
+        let to_world =
+            |x: f64, y: f64| [self.pivot_m[0] + c * x - s * y, self.pivot_m[1] + s * x + c * y, self.pivot_m[2]];
+        let normal_world = [sign * s, -sign * c];
+        let centre = to_world(spec.station_m, centre_y);
+        let pose = Pose::from_parts(Vector::new(centre[0], centre[1], centre[2]), Rotation::from_rotation_z(theta));
+        let spring = match (self.method, spec.law) {
+            (ContactMethod::Compliant, _) => None,
+            (ContactMethod::Rapier, crate::contact::ForceLaw::Linear { stiffness_n_m, damping_n_s_m }) => {
+                Some(PadSpring { rest_m: centre, stiffness_n_m, damping_n_s_m })
+            }
+            (ContactMethod::Rapier, _) => {
+                return Err(pad_error(
+                    scenario,
+                    spec,
+                    "contact.method = \"rapier\" models the pad as a linear spring: allowed law kind = \"linear\"",
+                ));
+            }
+        };
+        let builder = match spring {
+            None => RigidBodyBuilder::fixed(),
+            Some(_) => {
+                // The pad slides along its normal only; that must be a world axis, as rapier
+                // locks translations in world axes.
+                let along_x = normal_world[0].abs() > 1.0 - 1e-9;
+                if !along_x && normal_world[1].abs() < 1.0 - 1e-9 {
+                    return Err(pad_error(
+                        scenario,
+                        spec,
+                        "contact.method = \"rapier\" needs a pad facing a world axis: allowed angle_deg 0, ±90, 180",
+                    ));
+                }
+                RigidBodyBuilder::dynamic()
+                    .gravity_scale(0.0)
+                    .can_sleep(false)
+                    .lock_rotations()
+                    .enabled_translations(along_x, !along_x, false)
+            }
+        };
+        let body = self.world.insert_body(builder.pose(pose));
+        let shape = ColliderBuilder::cuboid(0.5 * spec.length_m, 0.5 * spec.thickness_m, 0.5 * spec.width_m)
+            .active_collision_types(PAD_CONTACT_TYPES)
+            .collision_groups(PAD_GROUPS)
+            .friction(0.0)
+            .mass(scenario.spec.contact.pad_mass_kg);
+        let collider = self.world.insert_collider(shape, Some(body));
+        Ok(Pad {
+            spec: spec.clone(),
+            normal_world,
+            face_centre_m: to_world(spec.station_m, face_y),
+            body,
+            collider,
+            impact_speed_m_s: 0.0,
+            force_n: 0.0,
+            point_m: [0.0; 2],
+            touching: None,
+            spring,
+        })
+    }
+
+    /// Depth of the arm section at a station, m.
+    fn arm_depth_at(&self, station_m: f64) -> f64 {
+        self.pieces
+            .iter()
+            .filter(|p| p.is_arm_element)
+            .min_by(|a, b| (a.station_m - station_m).abs().total_cmp(&(b.station_m - station_m).abs()))
+            .map_or(0.0, |p| p.depth_m)
+    }
+
+    /// The hub state at the arm's current time.
+    pub fn hub(&self) -> DriveState {
+        self.arm.sample().hub
+    }
+
+    /// Pose of each rapier shape from the arm's state: each at its station, turned with the
+    /// section there.
+    fn pose_pieces(&mut self, next_kinematic: bool) {
+        let hub = self.hub();
+        let q = self.arm.sample().q;
+        for piece in &self.pieces {
+            let pose = pose_piece(&self.arm.arm, piece, &hub, &q, self.pivot_m);
+            if let Some(body) = self.world.bodies.get_mut(piece.body) {
+                if next_kinematic {
+                    body.set_next_kinematic_position(pose);
+                } else {
+                    body.set_position(pose, true);
+                }
+            }
+        }
+    }
+
+    /// Advances the scene by `h_s` seconds.
+    pub fn step(&mut self, h_s: f64) -> Result<(), SceneError> {
+        match self.method {
+            ContactMethod::Compliant => self.step_compliant(h_s),
+            ContactMethod::Rapier => self.step_rapier(h_s),
+        }
+    }
+
+    fn step_compliant(&mut self, h_s: f64) -> Result<(), SceneError> {
+        self.pose_pieces(false);
+        self.world.detect_collisions(&(), &());
+        let reach = self.contact_reach(h_s);
+        let points: Vec<PointContact> = (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect();
+        self.arm.contacts = points.into_iter().map(|c| self.arm.arm.arm_contact(c)).collect();
+        self.arm.step(h_s)?;
+        let sample = self.arm.sample();
+        let q = sample.q;
+        let qd = self.arm_velocities();
+        for pad in &mut self.pads {
+            pad.force_n = 0.0;
+        }
+        for c in &self.arm.contacts {
+            let state = c.state(&sample.hub, &q, &qd);
+            let pad = &mut self.pads[c.contact.pair];
+            pad.force_n = state.force_n;
+            pad.point_m = state.point_m;
+            if state.force_n <= 0.0 {
+                pad.touching = None;
+            }
+        }
+        Ok(())
+    }
+
+    /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
+    fn contact_reach(&self, h_s: f64) -> f64 {
+        let s = self.arm.sample();
+        let speed = s.tip_velocity_world_m_s[0].hypot(s.tip_velocity_world_m_s[1]);
+        (3.0 * speed * h_s).max(2e-3)
+    }
+
+    /// The deepest point of the arm against pad `i`, within `reach` of touching.
+    fn deepest_point(&mut self, i: usize, reach: f64) -> Option<PointContact> {
+        let pad = &self.pads[i];
+        let mut best: Option<(f64, [f64; 3], &ArmPiece)> = None;
+        for piece in &self.pieces {
+            let Some(pair) = self.world.narrow_phase.contact_pair(piece.collider, pad.collider) else { continue };
+            for manifold in pair.manifolds() {
+                let arm_is_first = pair.collider1 == piece.collider;
+                let arm_collider = &self.world.colliders[piece.collider];
+                for point in &manifold.points {
+                    if point.dist > reach {
+                        continue;
+                    }
+                    let local = if arm_is_first { point.local_p1 } else { point.local_p2 };
+                    let world = arm_collider.position() * local;
+                    if best.as_ref().is_none_or(|b| point.dist < b.0) {
+                        best = Some((point.dist, [world.x, world.y, world.z], piece));
+                    }
+                }
+            }
+        }
+        let (dist, world, piece) = best?;
+        let (station_m, lateral_m) = piece.station_of(&self.world.colliders[piece.collider], world);
+        let name = piece.name.clone();
+        let reference = [world[0] - self.pivot_m[0], world[1] - self.pivot_m[1]];
+        let closing = self.closing_speed(station_m, lateral_m, i);
+        let pad = &mut self.pads[i];
+        if pad.force_n <= 0.0 {
+            pad.impact_speed_m_s = closing.max(1e-6);
+        }
+        pad.touching = Some(name);
+        Some(PointContact {
+            pair: i,
+            station_m,
+            lateral_m,
+            normal_world: pad.normal_world,
+            depth_m: -dist,
+            reference_point_m: reference,
+            law: pad.spec.law,
+            impact_speed_m_s: pad.impact_speed_m_s,
+        })
+    }
+
+    /// Speed at which the arm point at (station, lateral) closes on pad `i`, m/s.
+    fn closing_speed(&self, station_m: f64, lateral_m: f64, i: usize) -> f64 {
+        let probe = PointContact {
+            pair: i,
+            station_m,
+            lateral_m,
+            normal_world: self.pads[i].normal_world,
+            depth_m: 0.0,
+            reference_point_m: [0.0; 2],
+            law: self.pads[i].spec.law,
+            impact_speed_m_s: 1.0,
+        };
+        let contact = self.arm.arm.arm_contact(probe);
+        contact.state(&self.hub(), &self.arm.sample().q, &self.arm_velocities()).rate_m_s
+    }
+
+    /// q̇ of the arm's state.
+    fn arm_velocities(&self) -> nalgebra::DVector<f64> {
+        let s = self.arm.state();
+        let n = self.arm.arm.elastic_dofs();
+        if s.v.len() == n { s.v.clone() } else { s.v.rows(1, n).into_owned() }
+    }
+
+    fn step_rapier(&mut self, h_s: f64) -> Result<(), SceneError> {
+        self.pose_pieces(false);
+        let hub = self.hub();
+        let q = self.arm.sample().q;
+        let mut load = GeneralizedLoad::zero(self.arm.arm.elastic_dofs());
+        for &(_, station, lateral, force) in &self.rapier_load {
+            let [u, v] = self.arm.arm.deflection_at(station, &q);
+            let _ = (u, v, lateral);
+            load.add(&self.arm.arm.point_force(station, force, hub.angle_rad, &q));
+        }
+        self.arm.load = load;
+        self.arm.step(h_s)?;
+        self.pose_pieces(true);
+        self.apply_pad_springs();
+        self.world.integration_parameters.dt = h_s;
+        self.world.step();
+        self.measure_rapier_forces(h_s);
+        Ok(())
+    }
+
+    /// Spring–damper force of each pad's mount, held over the rapier step.
+    fn apply_pad_springs(&mut self) {
+        for pad in &self.pads {
+            let (Some(spring), Some(body)) = (pad.spring, self.world.bodies.get_mut(pad.body)) else { continue };
+            let x = body.translation();
+            let v = body.linvel();
+            let rest = Vector::new(spring.rest_m[0], spring.rest_m[1], spring.rest_m[2]);
+            let force = -(x - rest) * spring.stiffness_n_m - v * spring.damping_n_s_m;
+            body.reset_forces(false);
+            body.add_force(force, true);
+        }
+    }
+
+    /// Each pad's force from rapier's contact impulses over the last step.
+    fn measure_rapier_forces(&mut self, h_s: f64) {
+        self.rapier_load.clear();
+        for (i, pad) in self.pads.iter_mut().enumerate() {
+            pad.force_n = 0.0;
+            pad.touching = None;
+            for piece in &self.pieces {
+                let Some(pair) = self.world.narrow_phase.contact_pair(piece.collider, pad.collider) else { continue };
+                let impulse = pair.total_impulse();
+                let magnitude = impulse.length();
+                if magnitude <= 0.0 {
+                    continue;
+                }
+                let force = magnitude / h_s;
+                let arm_collider = &self.world.colliders[piece.collider];
+                let point = pair
+                    .find_deepest_contact()
+                    .map(|(m, c)| {
+                        let local = if pair.collider1 == piece.collider { c.local_p1 } else { c.local_p2 };
+                        let _ = m;
+                        arm_collider.position() * local
+                    })
+                    .unwrap_or(arm_collider.translation());
+                let (station, lateral) = piece.station_of(arm_collider, [point.x, point.y, point.z]);
+                pad.force_n += force;
+                pad.point_m = [point.x - self.pivot_m[0], point.y - self.pivot_m[1]];
+                pad.touching = Some(piece.name.clone());
+                let f = [force * pad.normal_world[0], force * pad.normal_world[1]];
+                self.rapier_load.push((i, station, lateral, f));
+            }
+        }
+    }
+
+    /// World pose of each pad (they move on their springs with the `rapier` method).
+    pub fn pad_poses(&self) -> Vec<Pose> {
+        self.pads.iter().map(|p| *self.world.bodies[p.body].position()).collect()
+    }
+
+    /// Poses of every arm piece for drawing.
+    pub fn piece_poses(&self) -> Vec<PiecePose> {
+        self.pieces
+            .iter()
+            .map(|p| {
+                let pose = self.world.bodies[p.body].position();
+                PiecePose { name: p.name.clone(), pose: *pose, half_extents_m: p.half_extents_m }
+            })
+            .collect()
+    }
+}
