@@ -95,7 +95,7 @@ fn malformed_urdf_is_named() {
         (
             "namespace",
             Box::new(|t: String| t.replace(" xmlns:pipearm=\"https://pipearm.dev/urdf/1\"", "")),
-            &["not well-formed XML"],
+            &["Unbound namespace prefix"],
         ),
         ("elements", Box::new(|t: String| t.replace("elements=\"24\"", "elements=\"0\"")), &["elements", "1 ..= 2000"]),
         (
