@@ -106,7 +106,7 @@ impl Integrator for GeneralizedAlpha {
         let (mut m, mut kt, mut ct) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
         let mut f = DVector::zeros(n);
         let mut residual_norm = f64::INFINITY;
-        for iteration in 0..self.max_iterations {
+        for _ in 0..self.max_iterations {
             let a1 = pseudo_of(&acc);
             let x1 = &x_base + h * h * self.beta * &a1;
             let v1 = &v_base + h * self.gamma * &a1;
@@ -118,8 +118,11 @@ impl Integrator for GeneralizedAlpha {
             let delta = jacobian.lu().solve(&residual).ok_or(IntegrateError::SingularMatrix { t: t1 })?;
             acc -= &delta;
             residual_norm = delta.norm();
-            let converged = sys.is_linear() || residual_norm <= self.tolerance * acc.norm().max(1e-300);
-            if converged || (iteration > 0 && residual_norm == 0.0) {
+            // Converged when the correction is small against the acceleration, or when what it
+            // would still move the coordinates is (an arm at rest on a pad has ẍ ≈ 0).
+            let small_acc = residual_norm <= self.tolerance * acc.norm();
+            let small_move = dx_dacc * residual_norm <= self.tolerance * x1.norm().max(1e-300);
+            if sys.is_linear() || small_acc || small_move || residual_norm == 0.0 {
                 let a1 = pseudo_of(&acc);
                 s.x = &x_base + h * h * self.beta * &a1;
                 s.v = &v_base + h * self.gamma * &a1;

@@ -4,7 +4,7 @@
 //! A robot is a base, a revolute lift joint about z (the lift plane is XY, Y up), a flexible arm
 //! link along its x axis, and rigid links carried by the arm (hand, gripper palm, jaws) through
 //! fixed or prismatic joints. Each carried link becomes a concentrated mass at the arm station
-//! of its centre of mass; its offset across the arm is kept for geometry only.
+//! of its centre of mass; its offset across the arm and out of the plane is kept for geometry only.
 
 mod pipes;
 mod urdf;
@@ -128,6 +128,8 @@ pub struct CarriedBody {
     pub station_m: f64,
     /// Offset of its centre of mass across the arm, in the lift plane, m.
     pub lateral_m: f64,
+    /// Offset of its centre of mass normal to the lift plane, m.
+    pub normal_offset_m: f64,
     /// Mass, kg.
     pub mass_kg: f64,
     /// Inertia about its centre of mass, normal to the lift plane, kg·m².

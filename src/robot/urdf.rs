@@ -264,6 +264,7 @@ impl Context<'_> {
             mount,
             station_m: cg.x,
             lateral_m: cg.y,
+            normal_offset_m: cg.z,
             mass_kg,
             rotary_inertia_kg_m2: izz,
             shapes: self.collision_shapes(link, pose)?,

@@ -117,16 +117,16 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
         let clamp = robot.body(at).expect("checked when the payload was resolved");
         // The string's axis runs along the arm, midway between the jaws.
         let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount == Mount::Prismatic).collect();
-        let lateral = if jaws.is_empty() {
-            clamp.lateral_m
-        } else {
-            jaws.iter().map(|j| j.lateral_m).sum::<f64>() / jaws.len() as f64
+        let mean = |f: fn(&crate::robot::CarriedBody) -> f64, own: f64| {
+            if jaws.is_empty() { own } else { jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64 }
         };
+        let lateral = mean(|b| b.lateral_m, clamp.lateral_m);
+        let normal = mean(|b| b.normal_offset_m, clamp.normal_offset_m);
         let radius = 0.5 * string.pipe.outer_diameter_m;
         let half_length = 0.5 * string.length_m;
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
         pieces.push((
-            ArmPiece::new("string", clamp.station_m, lateral, 0.0, along_arm, [half_length, radius, radius]),
+            ArmPiece::new("string", clamp.station_m, lateral, normal, along_arm, [half_length, radius, radius]),
             SharedShape::cylinder(half_length, radius),
         ));
     }
