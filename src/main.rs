@@ -120,6 +120,14 @@ fn print_summary(path: &Path, s: &RunSummary) {
         r.damping_ratio,
         r.settling_time_s
     );
+    if let Some(slip) = &s.string_slip {
+        println!(
+            "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",
+            1e3 * slip.max_slip_m,
+            1e3 * slip.final_slip_m,
+            slip.squeeze_n
+        );
+    }
     for p in &s.pairs {
         println!(
             "contact {:<14} peak {:.1} N at {:.3} s ({:.3} per payload weight), impulse {:.3} N·s, {} impacts",

@@ -50,6 +50,9 @@ pub fn write_recording(
     };
     send(TIP_DEFLECTION_ENTITY, series.tip_deflection_m.iter().map(|d| d[1]).collect())?;
     send("plots/drive_torque", series.drive_torque_n_m.clone())?;
+    if !series.string_slip_m.is_empty() {
+        send("plots/string_slip", series.string_slip_m.clone())?;
+    }
     for (name, forces) in pad_names.iter().zip(&series.pad_force_n) {
         send(&force_entity(name), forces.clone())?;
     }

@@ -29,6 +29,19 @@ pub struct Series {
     pub drive_torque_n_m: Vec<f64>,
     /// Contact force per pad (outer index: pad), N.
     pub pad_force_n: Vec<Vec<f64>>,
+    /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
+    pub string_slip_m: Vec<f64>,
+}
+
+/// How a friction-clamped string fared.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SlipSummary {
+    /// Squeeze per jaw, N.
+    pub squeeze_n: f64,
+    /// Largest |slip| along the arm, m.
+    pub max_slip_m: f64,
+    /// Slip at the end, m.
+    pub final_slip_m: f64,
 }
 
 /// Per contact pair: its peak force, impulse and impacts.
@@ -89,6 +102,8 @@ pub struct RunSummary {
     pub residual: Residual,
     /// Contact pairs.
     pub pairs: Vec<PairSummary>,
+    /// The friction clamp's slip, if the string is held by one.
+    pub string_slip: Option<SlipSummary>,
 }
 
 /// Runs a scenario at `fidelity` (its own if `None`).
@@ -121,6 +136,9 @@ fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
     series.tip_deflection_m.push(s.tip_deflection_hub_m);
     series.tip_velocity_m_s.push(s.tip_velocity_hub_m_s);
     series.drive_torque_n_m.push(s.drive_torque_n_m);
+    if let Some(grip) = &scene.grip {
+        series.string_slip_m.push(grip.slip_m);
+    }
     for ((pad, forces), tracker) in scene.pads.iter().zip(&mut series.pad_force_n).zip(trackers) {
         forces.push(pad.force_n);
         tracker.push(s.t_s, pad.force_n);
@@ -193,5 +211,10 @@ fn summarize(
         peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
         residual: residual(&deflection, scenario.drive_end_s()),
         pairs,
+        string_slip: scene.grip.as_ref().map(|g| SlipSummary {
+            squeeze_n: g.squeeze_n,
+            max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),
+            final_slip_m: series.string_slip_m.last().copied().unwrap_or(0.0),
+        }),
     })
 }

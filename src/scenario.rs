@@ -73,13 +73,22 @@ pub enum PayloadSpec {
     /// Nothing in the gripper.
     #[default]
     None,
-    /// A pipe string from the catalogue, clamped rigidly (lumped into the arm).
+    /// A pipe string from the catalogue, held by the gripper.
     String {
         #[serde(flatten)]
         string: StringSpec,
         /// Carried body whose station the string is clamped at (default `gripper`).
         #[serde(default = "default_clamp_body")]
         at: String,
+        /// How the jaws hold it (default `rigid`).
+        #[serde(default)]
+        clamp: Clamp,
+        /// Coulomb friction between jaws and string (`friction` clamp; default 0.3, steel on
+        /// steel, dry).
+        #[serde(default = "default_friction")]
+        friction_coefficient: f64,
+        /// Squeeze of each jaw, N (`friction` clamp; default: the jaw joint's URDF effort).
+        squeeze_n: Option<f64>,
     },
     /// One of the seed's lab blocks (1: 100 g, 2: 206 g, 3: 412 g) at the arm tip.
     Block { block: u8 },
@@ -87,6 +96,32 @@ pub enum PayloadSpec {
 
 fn default_clamp_body() -> String {
     "gripper".into()
+}
+
+fn default_friction() -> f64 {
+    0.3
+}
+
+/// How the gripper holds a string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Clamp {
+    /// Welded to the gripper: string and jaws are lumped into the arm's masses, their shapes
+    /// follow the gripper.
+    #[default]
+    Rigid,
+    /// Held by friction: the jaws close on force-limited prismatic motors and squeeze a dynamic
+    /// string in rapier; it slips when its load exceeds μ times the squeeze of both jaws.
+    Friction,
+}
+
+/// A friction clamp's parameters, resolved.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionClamp {
+    /// Coulomb coefficient.
+    pub friction_coefficient: f64,
+    /// Squeeze per jaw, N (`None`: the jaw joint's effort).
+    pub squeeze_n: Option<f64>,
 }
 
 /// The seed's lab mass blocks, kg.
@@ -274,7 +309,32 @@ impl Scenario {
         if !(spec.contact.pad_mass_kg.is_finite() && spec.contact.pad_mass_kg > 0.0) {
             return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", spec.contact.pad_mass_kg)));
         }
+        self.check_clamp()?;
         spec.dampeners.iter().enumerate().try_for_each(|(i, d)| self.check_dampener(i, d))
+    }
+
+    fn check_clamp(&self) -> Result<(), ScenarioError> {
+        let Some(clamp) = self.friction_clamp() else { return Ok(()) };
+        let mu = clamp.friction_coefficient;
+        if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
+            return Err(self.invalid("payload.friction_coefficient", format!("{mu} is outside 0 < μ <= 2")));
+        }
+        if let Some(n) = clamp.squeeze_n
+            && !(n.is_finite() && n > 0.0)
+        {
+            return Err(self.invalid("payload.squeeze_n", format!("{n} is outside > 0 N")));
+        }
+        let jaws = self.robot.carried.iter().filter(|b| b.mount.is_prismatic()).count();
+        if jaws != 2 {
+            return Err(self.invalid(
+                "payload.clamp",
+                format!(
+                    "a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}",
+                    self.robot.name
+                ),
+            ));
+        }
+        Ok(())
     }
 
     fn check_drive_limits(&self) -> Result<(), ScenarioError> {
@@ -321,13 +381,12 @@ impl Scenario {
     pub fn payload_masses(&self) -> Result<Vec<ConcentratedMass>, ScenarioError> {
         Ok(match &self.spec.payload {
             PayloadSpec::None => Vec::new(),
-            PayloadSpec::String { string, at } => {
+            PayloadSpec::String { at, .. } => {
                 let s = self.pipe_string()?.expect("a string payload");
                 let body = self.robot.body(at).ok_or_else(|| {
                     let names: Vec<_> = self.robot.carried.iter().map(|b| b.name.as_str()).collect();
                     self.invalid("payload.at", format!("`{at}` is not a link on the arm: allowed {}", names.join(", ")))
                 })?;
-                let _ = string;
                 vec![ConcentratedMass {
                     name: format!("string {}", s.pipe.size),
                     position_m: body.station_m,
@@ -349,6 +408,16 @@ impl Scenario {
                 }]
             }
         })
+    }
+
+    /// The friction clamp, if the payload is a string held by one.
+    pub fn friction_clamp(&self) -> Option<FrictionClamp> {
+        match &self.spec.payload {
+            PayloadSpec::String { clamp: Clamp::Friction, friction_coefficient, squeeze_n, .. } => {
+                Some(FrictionClamp { friction_coefficient: *friction_coefficient, squeeze_n: *squeeze_n })
+            }
+            _ => None,
+        }
     }
 
     /// The clamped pipe string, if the payload is one.

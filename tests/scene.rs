@@ -118,3 +118,63 @@ fn the_heavy_string_runs_stable_at_the_default_step() {
     println!("4-1/2 in string: peak force {a:.1} N at dt, {b:.1} N at dt/4");
     assert!(rel(a, b) < 0.1, "{a} vs {b}");
 }
+
+/// The default arm standing at 90° with a friction-clamped 2⅞ in string: the string's weight
+/// pulls along the arm toward the hub; the jaws hold it while 2μN exceeds m g, and it slides
+/// with a = g − 2μN/m once it does not.
+fn friction_hold(squeeze_n: f64, seconds: f64) -> (f64, f64) {
+    let mut s = scenario("default");
+    let mu = 0.3;
+    if let pipearm::scenario::PayloadSpec::String { clamp, friction_coefficient, squeeze_n: n, .. } =
+        &mut s.spec.payload
+    {
+        *clamp = pipearm::scenario::Clamp::Friction;
+        *friction_coefficient = mu;
+        *n = Some(squeeze_n);
+    }
+    s.spec.drive = pipearm::scenario::DriveSpec::Hold { angle_deg: 90.0 };
+    s.motion = s.spec.drive.motion().unwrap();
+    s.spec.dampeners.clear();
+    let mut scene = Scene::new(&s).unwrap();
+    let h = 1e-3;
+    for _ in 0..(seconds / h) as usize {
+        scene.step(h).unwrap();
+    }
+    let mass = s.pipe_string().unwrap().unwrap().mass_kg();
+    (scene.grip.as_ref().unwrap().slip_m, mass)
+}
+
+#[test]
+fn the_friction_clamp_holds_below_the_slip_load_and_slips_above_it() {
+    let (mu, g) = (0.3, 9.80665);
+    let weight = 120.875 * g;
+    // Holds with 25 % margin.
+    let (slip, _) = friction_hold(1.25 * weight / (2.0 * mu), 1.0);
+    println!("2μN = 1.25 m g: slip {slip:.6} m in 1 s");
+    assert!(slip.abs() < 1e-3, "slipped {slip} m while 2μN > m g");
+    // Slides at 25 % short of the load.
+    let squeeze = 0.75 * weight / (2.0 * mu);
+    let (slip, mass) = friction_hold(squeeze, 1.0);
+    let accel = g - 2.0 * mu * squeeze / mass;
+    let expected = -0.5 * accel;
+    println!("2μN = 0.75 m g: slip {slip:.4} m in 1 s, Coulomb {expected:.4} m");
+    assert!(rel(slip, expected) < 0.05, "slip {slip} m vs {expected} m");
+}
+
+#[test]
+fn the_friction_clamped_heavy_string_lifts_stable_at_the_default_step() {
+    let mut s = scenario("string_4half");
+    if let pipearm::scenario::PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
+        *clamp = pipearm::scenario::Clamp::Friction;
+    }
+    let (friction, series) = run(&s, None).unwrap();
+    let (rigid, _) = run(&scenario("string_4half"), None).unwrap();
+    let slip = friction.string_slip.unwrap();
+    println!(
+        "friction clamp: slip {:.3e} m, peak force {:.1} N vs rigid {:.1} N",
+        slip.max_slip_m, friction.pairs[0].peak_force_n, rigid.pairs[0].peak_force_n
+    );
+    assert!(series.tip_deflection_m.iter().all(|d| d[1].is_finite()));
+    assert!(slip.max_slip_m < 1e-3, "40 kN jaws let 200 kg slip {} m", slip.max_slip_m);
+    assert!(rel(friction.pairs[0].peak_force_n, rigid.pairs[0].peak_force_n) < 0.05);
+}

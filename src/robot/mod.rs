@@ -109,12 +109,24 @@ pub struct PlacedShape {
 }
 
 /// How a carried link hangs on the arm.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Mount {
     /// Welded or bolted.
     Fixed,
     /// On a prismatic joint (the gripper's jaws), at its zero position.
-    Prismatic,
+    Prismatic {
+        /// Unit axis in the arm frame along which the joint moves (closes), m/m.
+        axis: [f64; 3],
+        /// Force the joint's actuator can give, N (the URDF limit's effort).
+        effort_n: f64,
+    },
+}
+
+impl Mount {
+    /// True for a prismatic mount.
+    pub fn is_prismatic(&self) -> bool {
+        matches!(self, Mount::Prismatic { .. })
+    }
 }
 
 /// A rigid link carried by the arm.

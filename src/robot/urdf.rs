@@ -212,9 +212,19 @@ impl Context<'_> {
         while let Some((parent, parent_pose, parent_mount)) = frames.pop_front() {
             for joint in urdf.joints.iter().filter(|j| j.parent.link == parent) {
                 let key = format!("joint[{}]", joint.name);
+                let pose = parent_pose * pose_of(&joint.origin);
                 let mount = match joint.joint_type {
                     urdf_rs::JointType::Fixed => parent_mount,
-                    urdf_rs::JointType::Prismatic => Mount::Prismatic,
+                    urdf_rs::JointType::Prismatic => {
+                        let axis = pose.rotation * nalgebra::Vector3::from(joint.axis.xyz.0);
+                        if joint.limit.effort.is_nan() || joint.limit.effort <= 0.0 || axis.norm() < 1e-9 {
+                            return Err(
+                                self.invalid(&key, "a prismatic joint needs a non-zero axis and limit effort > 0 (N)")
+                            );
+                        }
+                        let axis = axis.normalize();
+                        Mount::Prismatic { axis: [axis.x, axis.y, axis.z], effort_n: joint.limit.effort }
+                    }
                     ref other => {
                         return Err(self.invalid(
                             &key,

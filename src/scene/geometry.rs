@@ -6,7 +6,7 @@ use rapier3d_f64::prelude::*;
 
 use crate::arm::ArmModel;
 use crate::drive::DriveState;
-use crate::robot::{Mount, Shape};
+use crate::robot::Shape;
 use crate::scenario::{PayloadSpec, Scenario, ScenarioError};
 
 /// A rapier shape riding on the arm at a station.
@@ -116,7 +116,7 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
     if let (PayloadSpec::String { at, .. }, Some(string)) = (&scenario.spec.payload, scenario.pipe_string()?) {
         let clamp = robot.body(at).expect("checked when the payload was resolved");
         // The string's axis runs along the arm, midway between the jaws.
-        let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount == Mount::Prismatic).collect();
+        let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
         let mean = |f: fn(&crate::robot::CarriedBody) -> f64, own: f64| {
             if jaws.is_empty() { own } else { jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64 }
         };

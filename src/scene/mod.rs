@@ -13,16 +13,20 @@
 //!    `rapier`: the last rapier step's contact impulse / dt is applied to the arm as a load;
 //! 3. advance the arm;
 //! 4. `rapier`: move the kinematic shapes to the new pose and step rapier (the pad is a body on
-//!    a spring joint);
-//! 5. measure each pad's force.
+//!    a spring);
+//! 5. measure each pad's force;
+//! 6. a friction clamp: move its palm with the gripper, step its world, measure the slip and the
+//!    correction it hands the arm next step ([`FrictionGrip`]).
 
+mod clamp;
 mod geometry;
 
 use rapier3d_f64::prelude::*;
 
 use crate::arm::{ArmError, ArmSimulation, GeneralizedLoad, PointContact};
 use crate::drive::DriveState;
-use crate::scenario::{ContactMethod, DampenerSpec, Face, Scenario, ScenarioError};
+use crate::scenario::{ContactMethod, DampenerSpec, Face, PayloadSpec, Scenario, ScenarioError};
+pub use clamp::FrictionGrip;
 use geometry::{ArmPiece, pose_piece, shapes_of_robot};
 
 pub use geometry::PiecePose;
@@ -85,7 +89,12 @@ pub struct Scene {
     world: PhysicsWorld,
     pieces: Vec<ArmPiece>,
     pivot_m: [f64; 3],
-    rapier_load: Vec<(usize, f64, f64, [f64; 2])>,
+    /// Pad forces measured by rapier over the last step: (pad, station, force world X/Y).
+    rapier_load: Vec<(usize, f64, [f64; 2])>,
+    /// The friction clamp, if the string is held by one.
+    pub grip: Option<FrictionGrip>,
+    /// Index of the piece carrying the clamp.
+    grip_palm: Option<usize>,
 }
 
 /// Errors building or stepping a scene.
@@ -113,7 +122,14 @@ impl Scene {
         world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
         world.integration_parameters.dt = scenario.spec.time.step_s;
         let pivot_m = scenario.robot.lift.pivot_m;
-        let pieces = shapes_of_robot(scenario)?
+        let friction = scenario.friction_clamp();
+        let jaw_names: Vec<&str> =
+            scenario.robot.carried.iter().filter(|b| b.mount.is_prismatic()).map(|b| b.name.as_str()).collect();
+        // With a friction clamp, string and jaws are rapier bodies of their own.
+        let (held, riding): (Vec<_>, Vec<_>) = shapes_of_robot(scenario)?
+            .into_iter()
+            .partition(|(p, _)| friction.is_some() && (p.name == "string" || jaw_names.contains(&p.name.as_str())));
+        let pieces: Vec<ArmPiece> = riding
             .into_iter()
             .map(|(piece, shape)| {
                 let body = world.insert_body(RigidBodyBuilder::kinematic_position_based());
@@ -131,13 +147,35 @@ impl Scene {
             .collision_groups(InteractionGroups::new(Group::GROUP_3, Group::NONE, InteractionTestMode::And));
         world.insert_collider(ground, None);
         let method = scenario.spec.contact.method;
-        let mut scene = Scene { arm, pads: Vec::new(), method, world, pieces, pivot_m, rapier_load: Vec::new() };
+        let mut scene = Scene {
+            arm,
+            pads: Vec::new(),
+            method,
+            world,
+            pieces,
+            pivot_m,
+            rapier_load: Vec::new(),
+            grip: None,
+            grip_palm: None,
+        };
         for spec in &scenario.spec.dampeners {
             let pad = scene.insert_pad(spec, scenario)?;
             scene.pads.push(pad);
         }
         scene.pose_pieces(false);
-        scene.world.detect_collisions(&(), &());
+        if let (Some(clamp), Some((string, shape))) = (friction, held.into_iter().find(|(p, _)| p.name == "string")) {
+            let PayloadSpec::String { at, .. } = &scenario.spec.payload else {
+                unreachable!("a friction clamp holds a string")
+            };
+            let palm = scene.pieces.iter().find(|p| &p.name == at).ok_or_else(|| ScenarioError::Invalid {
+                path: scenario.path.clone(),
+                key: "payload.at".into(),
+                message: format!("`{at}` has no collision shape to carry the jaws"),
+            })?;
+            let palm_pose = *scene.world.bodies[palm.body].position();
+            scene.grip = Some(FrictionGrip::new(scenario, clamp, palm, palm_pose, &string, shape)?);
+            scene.grip_palm = scene.pieces.iter().position(|p| &p.name == at);
+        }
         Ok(scene)
     }
 
@@ -243,29 +281,64 @@ impl Scene {
         }
     }
 
-    /// Advances the scene by `h_s` seconds.
+    /// Advances the scene by `h_s` seconds (the order of the module doc).
     pub fn step(&mut self, h_s: f64) -> Result<(), SceneError> {
-        match self.method {
-            ContactMethod::Compliant => self.step_compliant(h_s),
-            ContactMethod::Rapier => self.step_rapier(h_s),
+        self.pose_pieces(false);
+        self.arm.load = self.loads_from_rapier();
+        self.arm.contacts = match self.method {
+            ContactMethod::Compliant => self.compliant_contacts(h_s),
+            ContactMethod::Rapier => Vec::new(),
+        };
+        self.arm.step(h_s)?;
+        if self.method == ContactMethod::Compliant {
+            self.measure_compliant_forces();
         }
+        if self.method == ContactMethod::Rapier {
+            self.pose_pieces(true);
+            self.apply_pad_springs();
+            self.world.integration_parameters.dt = h_s;
+            self.world.step();
+            self.measure_rapier_forces(h_s);
+        }
+        if let (Some(grip), Some(palm)) = (self.grip.as_mut(), self.grip_palm) {
+            let sample = self.arm.sample();
+            let pose = pose_piece(&self.arm.arm, &self.pieces[palm], &sample.hub, &sample.q, self.pivot_m);
+            grip.step(pose, h_s);
+        }
+        Ok(())
     }
 
-    fn step_compliant(&mut self, h_s: f64) -> Result<(), SceneError> {
-        self.pose_pieces(false);
+    /// Loads measured in rapier's last step, as generalized forces on the arm now: the pads'
+    /// (`rapier` method) and the friction clamp's correction.
+    fn loads_from_rapier(&self) -> GeneralizedLoad {
+        let hub = self.hub();
+        let q = self.arm.sample().q;
+        let arm = &self.arm.arm;
+        let mut load = GeneralizedLoad::zero(arm.elastic_dofs());
+        let grip = self.grip.as_ref().map(|g| (g.station_m, g.correction_force_n));
+        for (station, force) in self.rapier_load.iter().map(|&(_, s, f)| (s, f)).chain(grip) {
+            load.add(&arm.point_force(station, force, hub.angle_rad, &q));
+        }
+        load
+    }
+
+    /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
+    fn compliant_contacts(&mut self, h_s: f64) -> Vec<crate::arm::ArmContact> {
         self.world.detect_collisions(&(), &());
         let reach = self.contact_reach(h_s);
         let points: Vec<PointContact> = (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect();
-        self.arm.contacts = points.into_iter().map(|c| self.arm.arm.arm_contact(c)).collect();
-        self.arm.step(h_s)?;
+        points.into_iter().map(|c| self.arm.arm.arm_contact(c)).collect()
+    }
+
+    /// Each pad's force at the end of the step, from its contact on the arm's new state.
+    fn measure_compliant_forces(&mut self) {
         let sample = self.arm.sample();
-        let q = sample.q;
         let qd = self.arm_velocities();
         for pad in &mut self.pads {
             pad.force_n = 0.0;
         }
         for c in &self.arm.contacts {
-            let state = c.state(&sample.hub, &q, &qd);
+            let state = c.state(&sample.hub, &sample.q, &qd);
             let pad = &mut self.pads[c.contact.pair];
             pad.force_n = state.force_n;
             pad.point_m = state.point_m;
@@ -273,7 +346,6 @@ impl Scene {
                 pad.touching = None;
             }
         }
-        Ok(())
     }
 
     /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
@@ -349,26 +421,6 @@ impl Scene {
         if s.v.len() == n { s.v.clone() } else { s.v.rows(1, n).into_owned() }
     }
 
-    fn step_rapier(&mut self, h_s: f64) -> Result<(), SceneError> {
-        self.pose_pieces(false);
-        let hub = self.hub();
-        let q = self.arm.sample().q;
-        let mut load = GeneralizedLoad::zero(self.arm.arm.elastic_dofs());
-        for &(_, station, lateral, force) in &self.rapier_load {
-            let [u, v] = self.arm.arm.deflection_at(station, &q);
-            let _ = (u, v, lateral);
-            load.add(&self.arm.arm.point_force(station, force, hub.angle_rad, &q));
-        }
-        self.arm.load = load;
-        self.arm.step(h_s)?;
-        self.pose_pieces(true);
-        self.apply_pad_springs();
-        self.world.integration_parameters.dt = h_s;
-        self.world.step();
-        self.measure_rapier_forces(h_s);
-        Ok(())
-    }
-
     /// Spring–damper force of each pad's mount, held over the rapier step.
     fn apply_pad_springs(&mut self) {
         for pad in &self.pads {
@@ -399,18 +451,18 @@ impl Scene {
                 let arm_collider = &self.world.colliders[piece.collider];
                 let point = pair
                     .find_deepest_contact()
-                    .map(|(m, c)| {
+                    .map(|(_, c)| {
                         let local = if pair.collider1 == piece.collider { c.local_p1 } else { c.local_p2 };
-                        let _ = m;
                         arm_collider.position() * local
                     })
                     .unwrap_or(arm_collider.translation());
-                let (station, lateral) = piece.station_of(arm_collider, [point.x, point.y, point.z]);
+                // The force acts on the arm's section at the point's station.
+                let (station, _) = piece.station_of(arm_collider, [point.x, point.y, point.z]);
                 pad.force_n += force;
                 pad.point_m = [point.x - self.pivot_m[0], point.y - self.pivot_m[1]];
                 pad.touching = Some(piece.name.clone());
                 let f = [force * pad.normal_world[0], force * pad.normal_world[1]];
-                self.rapier_load.push((i, station, lateral, f));
+                self.rapier_load.push((i, station, f));
             }
         }
     }

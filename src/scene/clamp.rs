@@ -1,0 +1,165 @@
+//! The friction clamp: two jaws on force-limited prismatic motors squeeze a dynamic string.
+//!
+//! Coupling by added-mass partitioning: the string and the jaws stay lumped in the arm model,
+//! as if clamped rigidly, and rapier moves them as bodies of their own. What the arm is given
+//! each step is only the difference: the string's acceleration along the arm relative to the
+//! palm, `−m a_rel` at the gripper — zero while the string sticks, the load the jaws fail to
+//! carry while it slips. (Across the arm the jaws hold the string by their normal force; the
+//! rigid lump already carries that, and rapier's contact chatter there is noise, not load.) A staggered scheme that fed the whole
+//! string force back a step late would be unstable once the string outweighed the arm's
+//! effective mass at the gripper (the added-mass trap); this one only lags the slip.
+//!
+//! The clamp has a rapier world of its own (a kinematic palm, the jaws, the string): calling
+//! `detect_collisions` on a world, as the `compliant` pads need every step, stops rapier 0.36
+//! from moving that world's dynamic bodies in later steps.
+
+use rapier3d_f64::prelude::*;
+
+use super::geometry::ArmPiece;
+use crate::robot::{CarriedBody, Mount, Shape};
+use crate::scenario::{FrictionClamp, Scenario, ScenarioError};
+
+/// Largest step of the clamp's world, s: the jaw–string contact is stiff, and at the arm's
+/// 2 ms step rapier's friction lets a held string creep (17 mm over the default lift, measured).
+const CLAMP_SUBSTEP_S: f64 = 2.5e-4;
+
+/// A string held by friction, its jaws, and what they do to the arm.
+pub struct FrictionGrip {
+    world: PhysicsWorld,
+    palm: RigidBodyHandle,
+    /// Station of the gripper, m.
+    pub station_m: f64,
+    string: RigidBodyHandle,
+    string_mass_kg: f64,
+    initial_offset_m: f64,
+    last_relative_velocity: Option<f64>,
+    /// Slip of the string along the arm relative to the gripper, m (positive toward the tip).
+    pub slip_m: f64,
+    /// Force the clamp puts on the arm beyond the lumped rigid clamp, world (X, Y), N.
+    pub correction_force_n: [f64; 2],
+    /// Squeeze per jaw, N.
+    pub squeeze_n: f64,
+}
+
+impl FrictionGrip {
+    /// Builds a palm at `palm_pose` (the gripper piece's pose), and the string and jaws on it.
+    pub fn new(
+        scenario: &Scenario,
+        clamp: FrictionClamp,
+        palm: &ArmPiece,
+        palm_pose: Pose,
+        string_piece: &ArmPiece,
+        string_shape: SharedShape,
+    ) -> Result<Self, ScenarioError> {
+        let string = scenario.pipe_string()?.expect("a friction clamp holds a string");
+        let mut world = PhysicsWorld::new();
+        world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
+        world.integration_parameters.dt = scenario.spec.time.step_s;
+        let palm_body = world.insert_body(RigidBodyBuilder::kinematic_position_based().pose(palm_pose));
+        // The string's centre in the palm's frame, and its turn along the arm.
+        let string_centre = Vector::new(
+            string_piece.station_m - palm.station_m,
+            string_piece.lateral_m - palm.lateral_m,
+            string_piece.normal_offset_m - palm.normal_offset_m,
+        );
+        let string_pose = palm_pose * Pose::from_parts(string_centre, string_piece.local_rotation);
+        let string_body = world.insert_body(RigidBodyBuilder::dynamic().pose(string_pose).can_sleep(false));
+        let collider = ColliderBuilder::new(string_shape).mass(string.mass_kg()).friction(clamp.friction_coefficient);
+        world.insert_collider(collider, Some(string_body));
+        let radius = 0.5 * string.pipe.outer_diameter_m;
+        let mut squeeze_n = f64::INFINITY;
+        for jaw in scenario.robot.carried.iter().filter(|b| b.mount.is_prismatic()) {
+            let Mount::Prismatic { axis, effort_n } = jaw.mount else { continue };
+            let n = clamp.squeeze_n.unwrap_or(effort_n);
+            squeeze_n = squeeze_n.min(n);
+            let closing = Vector::new(axis[0], axis[1], axis[2]);
+            let at =
+                JawPlacement { palm_body, palm_pose, palm_station_m: palm.station_m, string_centre, radius_m: radius };
+            insert_jaw(&mut world, jaw, closing, n, &at, clamp.friction_coefficient);
+        }
+        let mut grip = FrictionGrip {
+            world,
+            palm: palm_body,
+            station_m: palm.station_m,
+            string: string_body,
+            string_mass_kg: string.mass_kg(),
+            initial_offset_m: 0.0,
+            last_relative_velocity: None,
+            slip_m: 0.0,
+            correction_force_n: [0.0; 2],
+            squeeze_n,
+        };
+        grip.initial_offset_m = grip.axial_offset();
+        Ok(grip)
+    }
+
+    /// String position along the arm axis relative to the palm, m.
+    fn axial_offset(&self) -> f64 {
+        let palm = self.world.bodies[self.palm].position();
+        let along = palm.rotation * Vector::X;
+        (self.world.bodies[self.string].translation() - palm.translation).dot(along)
+    }
+
+    /// Moves the palm to `palm_pose` over `h_s`, steps the clamp's world in substeps, and
+    /// measures the slip and the force to hand the arm next step.
+    pub fn step(&mut self, palm_pose: Pose, h_s: f64) {
+        let start = *self.world.bodies[self.palm].position();
+        let substeps = (h_s / CLAMP_SUBSTEP_S).ceil().max(1.0) as usize;
+        self.world.integration_parameters.dt = h_s / substeps as f64;
+        for k in 1..=substeps {
+            let pose = start.lerp(&palm_pose, k as f64 / substeps as f64);
+            if let Some(palm) = self.world.bodies.get_mut(self.palm) {
+                palm.set_next_kinematic_position(pose);
+            }
+            self.world.step();
+        }
+        self.slip_m = self.axial_offset() - self.initial_offset_m;
+        let palm = self.world.bodies[self.palm].position();
+        let along = palm.rotation * Vector::X;
+        let relative = (self.world.bodies[self.string].linvel() - self.world.bodies[self.palm].linvel()).dot(along);
+        if let Some(last) = self.last_relative_velocity {
+            let force = along * (-self.string_mass_kg * (relative - last) / h_s);
+            self.correction_force_n = [force.x, force.y];
+        }
+        self.last_relative_velocity = Some(relative);
+    }
+}
+
+/// Where a jaw goes: the palm, and the string's centre and radius in the palm's frame.
+struct JawPlacement {
+    palm_body: RigidBodyHandle,
+    palm_pose: Pose,
+    palm_station_m: f64,
+    string_centre: Vector,
+    radius_m: f64,
+}
+
+/// A jaw as a dynamic body on a prismatic joint to the palm, placed touching the string and
+/// closing on it along `closing` with a motor limited to `squeeze_n`.
+fn insert_jaw(
+    world: &mut PhysicsWorld,
+    jaw: &CarriedBody,
+    closing: Vector,
+    squeeze_n: f64,
+    at: &JawPlacement,
+    friction: f64,
+) {
+    let half = match jaw.shapes.first().map(|s| s.shape) {
+        Some(Shape::Box { half_extents_m }) => half_extents_m,
+        _ => [0.05; 3],
+    };
+    // Half thickness of the jaw along its closing axis.
+    let thickness = (closing.x * half[0]).abs() + (closing.y * half[1]).abs() + (closing.z * half[2]).abs();
+    let centre = Vector::new(jaw.station_m - at.palm_station_m, 0.0, 0.0) + at.string_centre.with_x(0.0)
+        - closing * (at.radius_m + thickness);
+    let body = world
+        .insert_body(RigidBodyBuilder::dynamic().pose(at.palm_pose * Pose::from_translation(centre)).can_sleep(false));
+    let shape = ColliderBuilder::cuboid(half[0], half[1], half[2]).mass(jaw.mass_kg.max(1e-3)).friction(friction);
+    world.insert_collider(shape, Some(body));
+    let joint = PrismaticJointBuilder::new(closing)
+        .local_anchor1(centre)
+        .motor_model(MotorModel::ForceBased)
+        .motor_velocity(0.05, 1e9)
+        .motor_max_force(squeeze_n);
+    world.insert_impulse_joint(at.palm_body, body, joint);
+}
