@@ -87,7 +87,13 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
         message: e.to_string(),
     })?;
     let (width, depth) = (robot.arm.width_m(), robot.arm.depth_m());
-    let mut pieces = Vec::new();
+    // The hub: a drum on the pivot, turning with the drive.
+    let (hub_radius, hub_half_length) = (0.6 * depth, 0.5 * width.max(depth));
+    let drum = Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2);
+    let mut pieces = vec![(
+        ArmPiece::new("hub", 0.0, 0.0, 0.0, drum, [hub_radius, hub_half_length, hub_radius]),
+        SharedShape::cylinder(hub_half_length, hub_radius),
+    )];
     for el in &beam.elements {
         let half = [0.5 * el.length_m, 0.5 * depth, 0.5 * width];
         let mut piece = ArmPiece::new("arm", el.x0_m + 0.5 * el.length_m, 0.0, 0.0, Rotation::IDENTITY, half);
