@@ -13,6 +13,7 @@ pub mod contact;
 pub mod drive;
 pub mod integrate;
 pub mod record;
+pub mod regression;
 pub mod robot;
 pub mod run;
 pub mod scenario;

@@ -9,6 +9,7 @@ use pipearm::analysis::StiffnessClass;
 use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
 use pipearm::beam::BeamModel;
 use pipearm::record::{write_recording, write_summary};
+use pipearm::regression::{baseline_path, blessed, compare, read_baseline, write_baseline};
 use pipearm::run::{RunSummary, run};
 use pipearm::scenario::Scenario;
 
@@ -37,6 +38,20 @@ enum Command {
         /// Print the summary only; write nothing.
         #[arg(long)]
         no_record: bool,
+    },
+    /// Run scenarios and compare them with their regression baselines.
+    Check {
+        /// Scenario files (default: every scenarios/*.toml).
+        scenarios: Vec<PathBuf>,
+        /// Folder of the baselines.
+        #[arg(long, default_value = "tests/baselines")]
+        baselines: PathBuf,
+        /// Rewrite the baselines from these runs (keeping their tolerances) and print what changed.
+        #[arg(long)]
+        bless: bool,
+        /// Print the comparison as JSON.
+        #[arg(long)]
+        json: bool,
     },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
@@ -71,6 +86,7 @@ fn main() -> Result<()> {
     match Cli::parse().command {
         Command::Run { scenario, model, out, no_record } => run_command(&scenario, model, &out, no_record),
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
+        Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
     }
 }
 
@@ -88,6 +104,71 @@ fn run_command(path: &Path, model: Option<Fidelity>, out: &Path, no_record: bool
         println!("wrote               {} and {}", rrd.display(), json.display());
     }
     Ok(())
+}
+
+/// Runs each scenario and compares it with its baseline; fails if any quantity is off.
+fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool) -> Result<()> {
+    if scenarios.is_empty() {
+        scenarios = std::fs::read_dir("scenarios")
+            .context("reading scenarios/")?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+            .collect();
+        scenarios.sort();
+    }
+    let mut failed = 0;
+    let mut report = Vec::new();
+    for path in &scenarios {
+        let scenario = Scenario::load(path)?;
+        let name = scenario.spec.name.clone();
+        let (summary, _) = run(&scenario, None).with_context(|| format!("{}: running", path.display()))?;
+        let file = baseline_path(baselines, &name);
+        if bless {
+            let previous = read_baseline(&file, &name, path).ok();
+            let new = blessed(&summary, previous.as_ref());
+            if let Some(previous) = &previous {
+                for row in compare(previous, &summary).iter().filter(|r| r.now != r.baseline) {
+                    println!("{name}: {} {} -> {}", row.name, row.baseline, row.now);
+                }
+            }
+            write_baseline(&file, &new)?;
+            println!("blessed {}", file.display());
+            continue;
+        }
+        let baseline = read_baseline(&file, &name, path)?;
+        let rows = compare(&baseline, &summary);
+        failed += rows.iter().filter(|r| !r.pass).count();
+        if !json {
+            print_rows(&name, &rows);
+        }
+        report.push(serde_json::json!({ "scenario": name, "baseline": file, "rows": rows }));
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&report)?);
+    }
+    if failed > 0 {
+        bail!(
+            "{failed} quantities outside their tolerance (docs/regression.md); `pipearm check --bless` accepts a change on purpose"
+        );
+    }
+    Ok(())
+}
+
+fn print_rows(scenario: &str, rows: &[pipearm::regression::Row]) {
+    println!("{scenario}");
+    println!("  {:<38} {:>14} {:>14} {:>9} {:>16}", "quantity", "baseline", "now", "change", "tolerance");
+    for r in rows {
+        println!(
+            "  {:<38} {:>14.6} {:>14.6} {:>8.3}% {:>7.2}% ±{:<7} {}",
+            r.name,
+            r.baseline,
+            r.now,
+            100.0 * r.change,
+            100.0 * r.tolerance.0,
+            r.tolerance.1,
+            if r.pass { "pass" } else { "FAIL" }
+        );
+    }
 }
 
 fn print_summary(path: &Path, s: &RunSummary) {

@@ -84,7 +84,9 @@ pub struct RunSummary {
     pub steps: usize,
     /// Simulated time, s.
     pub simulated_s: f64,
-    /// Wall time of the step loop, s (not part of the physics; varies run to run).
+    /// Wall time of the step loop, s (printed, not written: it varies run to run, and the
+    /// summary file is bit-identical across runs).
+    #[serde(skip)]
     pub wall_time_s: f64,
     /// Static tip deflection ratio of the horizontal arm under gravity with its payload.
     pub static_w_over_l: f64,

@@ -1,0 +1,122 @@
+//! Regression baselines: every shipped scenario against its baseline; the check catches a
+//! 10 % stiffer pad and a heavier string; bless; determinism.
+
+use std::path::{Path, PathBuf};
+
+use pipearm::contact::ForceLaw;
+use pipearm::regression::{BaselineError, baseline_path, blessed, compare, read_baseline, write_baseline};
+use pipearm::run::run;
+use pipearm::scenario::{PayloadSpec, Scenario};
+
+fn manifest() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn scenario(name: &str) -> Scenario {
+    Scenario::load(&manifest().join(format!("scenarios/{name}.toml"))).unwrap()
+}
+
+fn shipped() -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(manifest().join("scenarios"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "toml") && !p.file_name().unwrap().to_string_lossy().starts_with('.')
+        })
+        .collect();
+    paths.sort();
+    paths
+}
+
+/// Failing rows of `scenario` against the shipped baseline of `baseline_of`.
+fn failures(s: &Scenario, baseline_of: &str) -> Vec<String> {
+    let baseline =
+        read_baseline(&baseline_path(&manifest().join("tests/baselines"), baseline_of), baseline_of, &s.path).unwrap();
+    let (summary, _) = run(s, None).unwrap();
+    compare(&baseline, &summary).into_iter().filter(|r| !r.pass).map(|r| r.name).collect()
+}
+
+#[test]
+fn every_shipped_scenario_matches_its_baseline() {
+    let paths = shipped();
+    assert!(paths.len() >= 3);
+    for path in paths {
+        let s = Scenario::load(&path).unwrap();
+        let name = s.spec.name.clone();
+        let failed = failures(&s, &name);
+        assert!(failed.is_empty(), "{name}: outside tolerance: {failed:?}");
+    }
+}
+
+#[test]
+fn a_ten_percent_stiffer_pad_fails_the_check() {
+    let mut s = scenario("default");
+    let ForceLaw::HuntCrossley { stiffness, .. } = &mut s.spec.dampeners[0].law else {
+        panic!("default pad law changed")
+    };
+    *stiffness *= 1.1;
+    let failed = failures(&s, "default");
+    assert!(failed.contains(&"arm–vertical_stop.peak_force_n".to_string()), "{failed:?}");
+}
+
+#[test]
+fn a_heavier_string_fails_the_check() {
+    let mut s = scenario("default");
+    let PayloadSpec::String { string, .. } = &mut s.spec.payload else { panic!("default payload changed") };
+    string.size = "4-1/2".into();
+    let failed = failures(&s, "default");
+    assert!(failed.contains(&"arm–vertical_stop.peak_force_n".to_string()), "{failed:?}");
+    assert!(failed.contains(&"max_tip_deflection_m".to_string()), "{failed:?}");
+}
+
+#[test]
+fn bless_accepts_a_change_and_keeps_the_tolerances() {
+    let dir = std::env::temp_dir().join(format!("pipearm-bless-{}", std::process::id()));
+    let mut s = scenario("default");
+    let ForceLaw::HuntCrossley { stiffness, .. } = &mut s.spec.dampeners[0].law else { panic!() };
+    *stiffness *= 1.1;
+    let (summary, _) = run(&s, None).unwrap();
+    let shipped =
+        read_baseline(&baseline_path(&manifest().join("tests/baselines"), "default"), "default", &s.path).unwrap();
+    let path = baseline_path(&dir, "default");
+    write_baseline(&path, &blessed(&summary, Some(&shipped))).unwrap();
+    let reread = read_baseline(&path, "default", &s.path).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(compare(&reread, &summary).iter().all(|r| r.pass));
+    for (new, old) in reread.quantities.iter().zip(&shipped.quantities) {
+        assert_eq!((new.relative_tolerance, new.absolute_tolerance), (old.relative_tolerance, old.absolute_tolerance));
+    }
+}
+
+#[test]
+fn missing_and_malformed_baselines_say_how_to_make_one() {
+    let s = scenario("default");
+    let dir = std::env::temp_dir().join(format!("pipearm-baselines-{}", std::process::id()));
+    let path = baseline_path(&dir, "default");
+    let missing = read_baseline(&path, "default", &s.path).unwrap_err();
+    assert!(matches!(missing, BaselineError::Missing { .. }));
+    assert!(missing.to_string().contains("--bless"), "{missing}");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(&path, "pipearm_version = 1\n").unwrap();
+    let malformed = read_baseline(&path, "default", &s.path).unwrap_err();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(matches!(malformed, BaselineError::Malformed { .. }));
+    assert!(malformed.to_string().contains("--bless") && malformed.to_string().contains("default.toml"), "{malformed}");
+}
+
+#[test]
+fn runs_are_bit_identical_on_rerun_and_across_threads() {
+    let s = scenario("default");
+    let json = |s: &Scenario| serde_json::to_string(&run(s, None).unwrap().0).unwrap();
+    let first = json(&s);
+    assert_eq!(first, json(&s), "a rerun changed the summary");
+    // Two runs at once on two threads: no shared state between runs.
+    let parallel: Vec<String> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..2).map(|_| scope.spawn(|| json(&s))).collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert!(parallel.iter().all(|p| *p == first), "a run on another thread differs");
+    let (_, a) = run(&s, None).unwrap();
+    let (_, b) = run(&s, None).unwrap();
+    assert!(a == b, "the recorded series differ between runs");
+}
