@@ -120,3 +120,19 @@ fn runs_are_bit_identical_on_rerun_and_across_threads() {
     let (_, b) = run(&s, None).unwrap();
     assert!(a == b, "the recorded series differ between runs");
 }
+
+#[test]
+fn pipearm_check_prints_a_failing_row_and_exits_non_zero() {
+    let path = manifest().join(format!("scenarios/.stiffer-{}.toml", std::process::id()));
+    let text = std::fs::read_to_string(manifest().join("scenarios/default.toml")).unwrap();
+    std::fs::write(&path, text.replace("stiffness = 7.5e6", "stiffness = 8.25e6")).unwrap();
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(["check", path.to_str().unwrap(), "--baselines", manifest().join("tests/baselines").to_str().unwrap()])
+        .output()
+        .unwrap();
+    std::fs::remove_file(&path).ok();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(!output.status.success());
+    let row = stdout.lines().find(|l| l.contains("peak_force_n")).unwrap_or_default();
+    assert!(row.contains("FAIL") && row.contains("1494.589"), "{stdout}");
+}
