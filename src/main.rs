@@ -10,7 +10,7 @@ use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
 use pipearm::beam::BeamModel;
 use pipearm::record::{write_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, write_baseline};
-use pipearm::run::{RunSummary, run};
+use pipearm::run::{RunOptions, RunSummary, run, run_with};
 use pipearm::scenario::Scenario;
 
 /// Flexible pipe-handling arms and the impacts on their dampeners.
@@ -38,6 +38,9 @@ enum Command {
         /// Print the summary only; write nothing.
         #[arg(long)]
         no_record: bool,
+        /// Rate at which steps without contact are recorded, Hz (steps in contact always are).
+        #[arg(long, default_value_t = 50.0)]
+        record_rate: f64,
     },
     /// Run scenarios and compare them with their regression baselines.
     Check {
@@ -84,24 +87,39 @@ fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
 
 fn main() -> Result<()> {
     match Cli::parse().command {
-        Command::Run { scenario, model, out, no_record } => run_command(&scenario, model, &out, no_record),
+        Command::Run { scenario, model, out, no_record, record_rate } => run_command(
+            &scenario,
+            RunOptions { fidelity: model, record_rate_hz: record_rate, capture_frames: !no_record },
+            &out,
+        ),
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
     }
 }
 
-fn run_command(path: &Path, model: Option<Fidelity>, out: &Path, no_record: bool) -> Result<()> {
+fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
+    if !(options.record_rate_hz.is_finite() && options.record_rate_hz > 0.0) {
+        bail!("--record-rate = {}: allowed a rate > 0 Hz", options.record_rate_hz);
+    }
     let scenario = Scenario::load(path)?;
-    let (summary, series) = run(&scenario, model).with_context(|| format!("{}: running", path.display()))?;
+    let (summary, series) = run_with(&scenario, &options).with_context(|| format!("{}: running", path.display()))?;
     print_summary(path, &summary);
-    if !no_record {
+    if options.capture_frames {
+        let started = std::time::Instant::now();
         let name = &scenario.spec.name;
         let pads: Vec<String> = scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
         let rrd = out.join(format!("{name}.rrd"));
         let json = out.join(format!("{name}.summary.json"));
         write_recording(&rrd, &summary, &series, &pads)?;
         write_summary(&json, &summary)?;
-        println!("wrote               {} and {}", rrd.display(), json.display());
+        let bytes = std::fs::metadata(&rrd).map(|m| m.len()).unwrap_or(0);
+        println!(
+            "wrote               {} ({:.2} MB, {:.3} s) and {}",
+            rrd.display(),
+            bytes as f64 / 1e6,
+            started.elapsed().as_secs_f64(),
+            json.display()
+        );
     }
     Ok(())
 }

@@ -1,11 +1,34 @@
-//! Recordings for the rerun viewer (`.rrd`), written on a `sim_time` timeline.
+//! Recordings for the rerun viewer (`.rrd`), on a `sim_time` timeline, with a blueprint that
+//! opens the 3D scene beside the time series.
 //!
-//! Files are written to a temporary name and renamed when complete, so a failed run leaves no
-//! half recording.
+//! Layout of a recording:
+//!
+//! | entity | what |
+//! |---|---|
+//! | `world/…` | 3D: hub, arm elements, hand, gripper, jaws, string, pads, ground (boxes, m, Y up) |
+//! | `world/centreline_x<M>` | the deformed centreline with its deflection magnified M times |
+//! | `world/contact_force_<S>N_per_m` | contact points and force arrows, S newtons per metre of arrow |
+//! | `plots/contact_force/arm-<pad>` | contact force per pair, N |
+//! | `plots/tip_deflection/{axial,transverse}` | tip displacement in the hub frame, m |
+//! | `plots/tip_velocity/{axial,transverse}` | tip velocity in the hub frame, m/s |
+//! | `plots/hub/{angle_deg,rate_deg_s,accel_deg_s2}` | hub motion |
+//! | `plots/drive_torque` | N·m |
+//! | `plots/modal/q<i>` | elastic coordinates (modal models) |
+//! | `plots/energy/{kinetic,strain,gravity}` | J |
+//! | `plots/string_slip` | friction clamp slip, m |
+//! | `events` | impacts (start, peak, end), warnings |
+//! | `summary` | the run summary (JSON) |
+//!
+//! Steps are kept at the record rate in free motion and every step in contact, so no peak is
+//! lost ([`crate::run::RunOptions`]). Files are written to a temporary name and renamed when
+//! complete, so a failed run leaves no half recording.
 
 use std::path::Path;
 
+use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical};
+
 use crate::run::{RunSummary, Series};
+use crate::scene::{Frame, SceneLayout};
 
 /// Errors writing a recording.
 #[derive(Debug, thiserror::Error)]
@@ -20,13 +43,26 @@ pub enum RecordError {
 
 /// Entity path of a pad's contact force series.
 pub fn force_entity(pad: &str) -> String {
-    format!("plots/contact_force/arm–{pad}")
+    format!("plots/contact_force/arm-{pad}")
 }
 
 /// Entity path of the transverse tip deflection series.
 pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection/transverse";
 
-/// Writes the time series of a run to `path` (.rrd).
+/// Display magnification of the deflection: a power of ten that makes the largest tip
+/// deflection show as about 2 % of the arm's length (1 if it already does).
+pub fn magnification(summary: &RunSummary, length_m: f64) -> f64 {
+    let d = summary.max_tip_deflection_m.max(1e-12);
+    10f64.powf((0.02 * length_m / d).log10().round()).max(1.0)
+}
+
+/// Newtons per metre of force arrow: the power of ten above the largest contact force.
+pub fn arrow_scale_n_per_m(summary: &RunSummary) -> f64 {
+    let peak = summary.pairs.iter().map(|p| p.peak_force_n).fold(0.0, f64::max).max(1.0);
+    10f64.powf(peak.log10().ceil())
+}
+
+/// Writes a run to `path` (.rrd).
 pub fn write_recording(
     path: &Path,
     summary: &RunSummary,
@@ -41,26 +77,226 @@ pub fn write_recording(
     let tmp = path.with_extension("rrd.tmp");
     let rec = rerun::RecordingStreamBuilder::new("pipearm")
         .recording_id(summary.scenario.clone())
+        .with_blueprint(blueprint())
         .save(&tmp)
         .map_err(|e| rerun_err(&e))?;
-    let times = || rerun::TimeColumn::new_duration_secs("sim_time", series.t_s.iter().copied());
-    let send = |entity: &str, values: Vec<f64>| -> Result<(), RecordError> {
-        let columns = rerun::Scalars::new(values).columns_of_unit_batches().map_err(|e| rerun_err(&e))?;
-        rec.send_columns(entity, [times()], columns).map_err(|e| rerun_err(&e))
-    };
-    send(TIP_DEFLECTION_ENTITY, series.tip_deflection_m.iter().map(|d| d[1]).collect())?;
-    send("plots/drive_torque", series.drive_torque_n_m.clone())?;
-    if !series.string_slip_m.is_empty() {
-        send("plots/string_slip", series.string_slip_m.clone())?;
+    let writer = Writer { rec: &rec, series };
+    writer.plots(pad_names).map_err(|e| rerun_err(&e))?;
+    if let Some(layout) = &series.layout {
+        writer.scene(layout, summary).map_err(|e| rerun_err(&e))?;
     }
-    for (name, forces) in pad_names.iter().zip(&series.pad_force_n) {
-        send(&force_entity(name), forces.clone())?;
-    }
+    writer.events(summary).map_err(|e| rerun_err(&e))?;
     let text = serde_json::to_string_pretty(summary).map_err(|e| rerun_err(&e))?;
-    rec.log_static("summary", &rerun::TextDocument::new(text)).map_err(|e| rerun_err(&e))?;
+    rec.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))
+        .map_err(|e| rerun_err(&e))?;
     rec.flush_blocking().map_err(|e| rerun_err(&e))?;
     drop(rec);
     std::fs::rename(&tmp, path).map_err(|source| RecordError::Io { path: shown.clone(), source })
+}
+
+/// The view the file opens with: 3D scene left, force / tip deflection / torque right, events
+/// below them.
+fn blueprint() -> Blueprint {
+    let plots = Vertical::new([
+        TimeSeriesView::new("contact force (N)").with_origin("plots/contact_force").into(),
+        TimeSeriesView::new("tip deflection (m)").with_origin("plots/tip_deflection").into(),
+        TimeSeriesView::new("drive torque (N·m)").with_origin("plots/drive_torque").into(),
+        TextLogView::new("events").with_origin("events").into(),
+    ]);
+    Blueprint::new(Horizontal::new([Spatial3DView::new("scene").with_origin("world").into(), plots.into()]))
+}
+
+struct Writer<'a> {
+    rec: &'a rerun::RecordingStream,
+    series: &'a Series,
+}
+
+impl Writer<'_> {
+    /// Times of the kept steps.
+    fn kept<T: Copy>(&self, values: impl IntoIterator<Item = T>) -> Vec<T> {
+        values.into_iter().zip(&self.series.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
+    }
+
+    fn send(&self, entity: &str, values: impl IntoIterator<Item = f64>) -> rerun::RecordingStreamResult<()> {
+        let times = rerun::TimeColumn::new_duration_secs("sim_time", self.kept(self.series.t_s.iter().copied()));
+        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
+        self.rec.send_columns(entity, [times], columns)
+    }
+
+    fn plots(&self, pad_names: &[String]) -> rerun::RecordingStreamResult<()> {
+        let s = self.series;
+        for (k, axis) in ["axial", "transverse"].iter().enumerate() {
+            self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
+            self.send(&format!("plots/tip_velocity/{axis}"), s.tip_velocity_m_s.iter().map(|d| d[k]))?;
+        }
+        self.send("plots/hub/angle_deg", s.hub_angle_rad.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/hub/rate_deg_s", s.hub_rate_rad_s.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/hub/accel_deg_s2", s.hub_accel_rad_s2.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/drive_torque", s.drive_torque_n_m.iter().copied())?;
+        for (k, name) in ["kinetic", "strain", "gravity"].iter().enumerate() {
+            self.send(&format!("plots/energy/{name}"), s.energies_j.iter().map(|e| e[k]))?;
+        }
+        let modes = s.modal_q.first().map_or(0, Vec::len);
+        for i in 0..modes {
+            self.send(&format!("plots/modal/q{}", i + 1), s.modal_q.iter().map(|q| q[i]))?;
+        }
+        if !s.string_slip_m.is_empty() {
+            self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
+        }
+        for (name, forces) in pad_names.iter().zip(&s.pad_force_n) {
+            self.send(&force_entity(name), forces.iter().copied())?;
+        }
+        Ok(())
+    }
+
+    fn scene(&self, layout: &SceneLayout, summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
+        let rec = self.rec;
+        rec.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
+        rec.log_static(
+            "world/ground",
+            &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -0.05, 0.0)], [(15.0, 0.05, 5.0)])
+                .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
+        )?;
+        let magnify = magnification(summary, layout.length_m);
+        let scale = arrow_scale_n_per_m(summary);
+        let centreline = format!("world/centreline_x{magnify:.0}");
+        let arrows = format!("world/contact_force_{scale:.0}N_per_m");
+        rec.log_static(
+            "events",
+            &rerun::TextLog::new(format!(
+                "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
+            )),
+        )?;
+        let frames = &self.series.frames;
+        let times = || rerun::TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
+        // Shapes are static; poses go in one column per entity (send_columns), not a log call
+        // per frame: that is what keeps the recording's cost small.
+        for (name, indices) in group_pieces(layout) {
+            let entity = format!("world/{name}");
+            rec.log_static(
+                entity.as_str(),
+                &rerun::Boxes3D::from_half_sizes(indices.iter().map(|&i| layout.pieces[i].1.map(|v| v as f32))),
+            )?;
+            let centers = frames.iter().flat_map(|f| indices.iter().map(|&i| vec3(f.pieces[i].translation)));
+            let quats = frames.iter().flat_map(|f| indices.iter().map(|&i| quat(f.pieces[i].rotation)));
+            let columns = rerun::Boxes3D::update_fields()
+                .with_centers(centers.collect::<Vec<_>>())
+                .with_quaternions(quats.collect::<Vec<_>>())
+                .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
+            rec.send_columns(entity.as_str(), [times()], columns)?;
+        }
+        rec.log_static(
+            "world/pads",
+            &rerun::Boxes3D::from_half_sizes(layout.pads.iter().map(|p| p.1.map(|v| v as f32)))
+                .with_labels(layout.pads.iter().map(|p| p.0.clone()))
+                .with_colors([rerun::Color::from_rgb(40, 40, 40)])
+                .with_fill_mode(rerun::FillMode::Solid),
+        )?;
+        let columns = rerun::Boxes3D::update_fields()
+            .with_centers(frames.iter().flat_map(|f| f.pads.iter().map(|p| vec3(p.translation))).collect::<Vec<_>>())
+            .with_quaternions(frames.iter().flat_map(|f| f.pads.iter().map(|p| quat(p.rotation))).collect::<Vec<_>>())
+            .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))?;
+        rec.send_columns("world/pads", [times()], columns)?;
+        let strips: Vec<Vec<[f32; 3]>> = frames.iter().map(|f| centreline_points(layout, f, magnify)).collect();
+        let columns =
+            rerun::LineStrips3D::update_fields().with_strips(strips).columns(std::iter::repeat_n(1, frames.len()))?;
+        rec.send_columns(centreline.as_str(), [times()], columns)?;
+        let origins: Vec<[f32; 3]> =
+            frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
+        let vectors: Vec<[f32; 3]> = frames
+            .iter()
+            .flat_map(|f| f.contacts.iter().map(|c| [(c.2[0] / scale) as f32, (c.2[1] / scale) as f32, 0.0]))
+            .collect();
+        rec.log_static(
+            arrows.as_str(),
+            &rerun::Arrows3D::update_fields().with_colors([rerun::Color::from_rgb(220, 40, 40)]),
+        )?;
+        let columns = rerun::Arrows3D::update_fields()
+            .with_origins(origins)
+            .with_vectors(vectors)
+            .columns(frames.iter().map(|f| f.contacts.len()))?;
+        rec.send_columns(arrows.as_str(), [times()], columns)?;
+        Ok(())
+    }
+
+    fn events(&self, summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
+        let rec = self.rec;
+        let mut events: Vec<(f64, String, &str)> = Vec::new();
+        for pair in &summary.pairs {
+            for (k, i) in pair.impacts.iter().enumerate() {
+                let n = k + 1;
+                events.push((i.start_s, format!("{}: impact {n} starts", pair.pair), rerun::TextLogLevel::INFO));
+                events.push((
+                    i.peak_time_s,
+                    format!("{}: impact {n} peak {:.1} N", pair.pair, i.peak_force_n),
+                    rerun::TextLogLevel::INFO,
+                ));
+                events.push((
+                    i.end_s,
+                    format!(
+                        "{}: impact {n} ends after {:.1} ms, impulse {:.3} N·s",
+                        pair.pair,
+                        1e3 * i.duration_s(),
+                        i.impulse_n_s
+                    ),
+                    rerun::TextLogLevel::INFO,
+                ));
+            }
+        }
+        if let Some(slip) = &summary.string_slip
+            && slip.max_slip_m > 1e-3
+        {
+            let message = format!("the string slipped {:.1} mm in the jaws", 1e3 * slip.max_slip_m);
+            events.push((summary.simulated_s, message, rerun::TextLogLevel::WARN));
+        }
+        if summary.static_w_over_l > 1.0 / 250.0 {
+            events.push((
+                0.0,
+                format!("static w/l {:.5}: {}", summary.static_w_over_l, summary.stiffness_class),
+                rerun::TextLogLevel::WARN,
+            ));
+        }
+        events.push((0.0, format!("model {}: {}", summary.model, summary.stiffness_class), rerun::TextLogLevel::INFO));
+        events.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (t, text, level) in events {
+            rec.set_duration_secs("sim_time", t);
+            rec.log("events", &rerun::TextLog::new(text).with_level(level))?;
+        }
+        Ok(())
+    }
+}
+
+/// Piece indices grouped by name, in first-seen order (all elements of the arm in one entity).
+fn group_pieces(layout: &SceneLayout) -> Vec<(String, Vec<usize>)> {
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, (name, _)) in layout.pieces.iter().enumerate() {
+        match groups.iter_mut().find(|g| &g.0 == name) {
+            Some(g) => g.1.push(i),
+            None => groups.push((name.clone(), vec![i])),
+        }
+    }
+    groups
+}
+
+fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[f32; 3]> {
+    let (s, c) = frame.hub_angle_rad.sin_cos();
+    let p = layout.pivot_m;
+    frame
+        .centreline
+        .iter()
+        .map(|(x, [u, v])| {
+            let (bx, by) = (x + magnify * u, magnify * v);
+            [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
+        })
+        .collect()
+}
+
+fn vec3(v: rapier3d_f64::math::Vector) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+fn quat(q: rapier3d_f64::math::Rotation) -> rerun::Quaternion {
+    rerun::Quaternion::from_xyzw([q.x as f32, q.y as f32, q.z as f32, q.w as f32])
 }
 
 /// Writes the summary as JSON to `path`, atomically.

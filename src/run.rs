@@ -8,7 +8,7 @@ use crate::analysis::{Residual, StiffnessClass, residual};
 use crate::arm::Fidelity;
 use crate::contact::{Impact, ImpactTracker};
 use crate::scenario::Scenario;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -31,6 +31,33 @@ pub struct Series {
     pub pad_force_n: Vec<Vec<f64>>,
     /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
     pub string_slip_m: Vec<f64>,
+    /// Kinetic, strain and gravity energy, J.
+    pub energies_j: Vec<[f64; 3]>,
+    /// Elastic coordinates q (modal and rigid models only; empty for fe).
+    pub modal_q: Vec<Vec<f64>>,
+    /// Steps a recording keeps: every step in contact, the others at the record rate.
+    pub keep: Vec<bool>,
+    /// The scene for drawing at each kept step (when asked for).
+    pub frames: Vec<Frame>,
+    /// The unchanging part of the drawing.
+    pub layout: Option<SceneLayout>,
+}
+
+/// How to run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunOptions {
+    /// Model fidelity (the scenario's if `None`).
+    pub fidelity: Option<Fidelity>,
+    /// Rate at which steps without contact are kept for a recording, Hz.
+    pub record_rate_hz: f64,
+    /// Capture the 3D scene at kept steps (for a recording).
+    pub capture_frames: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions { fidelity: None, record_rate_hz: 50.0, capture_frames: false }
+    }
 }
 
 /// How a friction-clamped string fared.
@@ -108,25 +135,62 @@ pub struct RunSummary {
     pub string_slip: Option<SlipSummary>,
 }
 
-/// Runs a scenario at `fidelity` (its own if `None`).
+/// Runs a scenario at `fidelity` (its own if `None`), capturing no frames.
 pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummary, Series), SceneError> {
-    let fidelity = fidelity.unwrap_or(scenario.spec.model);
+    run_with(scenario, &RunOptions { fidelity, ..RunOptions::default() })
+}
+
+/// Runs a scenario with `options`.
+pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
+    let fidelity = options.fidelity.unwrap_or(scenario.spec.model);
     let mut scene = Scene::with_fidelity(scenario, fidelity)?;
     let h = scenario.spec.time.step_s;
     let end = scenario.duration_s();
     let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize;
     let mut series = Series { pad_force_n: vec![Vec::with_capacity(steps + 1); scene.pads.len()], ..Series::default() };
     let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
+    if options.capture_frames {
+        series.layout = Some(scene.layout());
+    }
+    let mut keeper =
+        Keeper { period_s: 1.0 / options.record_rate_hz, last_kept_s: f64::NEG_INFINITY, was_in_contact: false };
     let started = Instant::now();
     record(&scene, &mut series, &mut trackers);
+    keeper.keep(&scene, &mut series, options.capture_frames, false);
     for i in 0..steps {
         let step = h.min(end - i as f64 * h);
         scene.step(step)?;
         record(&scene, &mut series, &mut trackers);
+        keeper.keep(&scene, &mut series, options.capture_frames, i + 1 == steps);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
     let summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
     Ok((summary, series))
+}
+
+/// Decides which steps a recording keeps: every step in contact (and the one after), the
+/// others at the record rate, so no peak is lost.
+struct Keeper {
+    period_s: f64,
+    last_kept_s: f64,
+    was_in_contact: bool,
+}
+
+impl Keeper {
+    fn keep(&mut self, scene: &Scene, series: &mut Series, capture: bool, last: bool) {
+        let t = scene.arm.time_s();
+        let in_contact = scene.pads.iter().any(|p| p.force_n > 0.0);
+        let due = t - self.last_kept_s >= self.period_s * (1.0 - 1e-9);
+        let keep = in_contact || self.was_in_contact || due || last;
+        self.was_in_contact = in_contact;
+        series.keep.push(keep);
+        if keep {
+            self.last_kept_s = t;
+            if capture {
+                series.frames.push(scene.frame());
+            }
+        }
+    }
 }
 
 fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
@@ -138,6 +202,10 @@ fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
     series.tip_deflection_m.push(s.tip_deflection_hub_m);
     series.tip_velocity_m_s.push(s.tip_velocity_hub_m_s);
     series.drive_torque_n_m.push(s.drive_torque_n_m);
+    series.energies_j.push([s.energies.kinetic_j, s.energies.strain_j, s.energies.gravity_j]);
+    if scene.arm.arm.fidelity != Fidelity::Fe {
+        series.modal_q.push(s.q.iter().copied().collect());
+    }
     if let Some(grip) = &scene.grip {
         series.string_slip_m.push(grip.slip_m);
     }

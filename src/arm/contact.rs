@@ -61,8 +61,7 @@ pub struct ContactState {
 impl ArmModel {
     /// Projects a contact onto this model's coordinates.
     pub fn arm_contact(&self, contact: PointContact) -> ArmContact {
-        let phi_t = self.basis.transpose();
-        let rows = self.beam.point_rows(contact.station_m).map(|r| &phi_t * r);
+        let rows = self.station_rows(contact.station_m).0;
         ArmContact { contact, rows }
     }
 }

@@ -92,6 +92,17 @@ impl Default for ArmOptions {
     }
 }
 
+/// Shape rows (axial u, deflection v, slope φ) of one station over the elastic coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StationRows(pub [DVector<f64>; 3]);
+
+impl StationRows {
+    /// [u (m), v (m), φ (rad)] at `q`.
+    pub fn displacement(&self, q: &DVector<f64>) -> [f64; 3] {
+        [self.0[0].dot(q), self.0[1].dot(q), self.0[2].dot(q)]
+    }
+}
+
 /// Errors building or running an arm model.
 #[derive(Debug, Clone, PartialEq, Error)]
 pub enum ArmError {
@@ -200,9 +211,13 @@ impl ArmModel {
 
     /// Displacement (axial stretch u, deflection v) in the hub frame of the point at `x_m`, m.
     pub fn deflection_at(&self, x_m: f64, q: &DVector<f64>) -> [f64; 2] {
-        let [u, v, _] = self.beam.point_rows(x_m);
-        let (u, v) = (self.basis.transpose() * u, self.basis.transpose() * v);
-        [u.dot(q), v.dot(q)]
+        let [u, v, _] = self.station_rows(x_m).displacement(q);
+        [u, v]
+    }
+
+    /// The shape rows of station `x_m` projected on q: compute once, evaluate per step.
+    pub fn station_rows(&self, x_m: f64) -> StationRows {
+        StationRows(self.beam.point_rows(x_m).map(|r| self.basis.tr_mul(&r)))
     }
 
     /// Static elastic coordinates under gravity with the hub held at `angle_rad`:
@@ -225,8 +240,7 @@ impl ArmModel {
 
     /// Slope (section rotation) at station `x_m`, rad.
     pub fn slope_at(&self, x_m: f64, q: &DVector<f64>) -> f64 {
-        let [_, _, phi] = self.beam.point_rows(x_m);
-        (self.basis.transpose() * phi).dot(q)
+        self.station_rows(x_m).displacement(q)[2]
     }
 
     /// Tip (u, v, slope) rows over q.
@@ -243,7 +257,7 @@ impl ArmModel {
         let r_world = [c * (x_m + u) - s * v, s * (x_m + u) + c * v];
         let f_body = [c * force_n[0] + s * force_n[1], -s * force_n[0] + c * force_n[1]];
         let [nu, nv, _] = self.beam.point_rows(x_m);
-        let modal = self.basis.transpose() * (f_body[0] * nu + f_body[1] * nv);
+        let modal = self.basis.tr_mul(&(f_body[0] * nu + f_body[1] * nv));
         GeneralizedLoad { hub_torque_n_m: r_world[0] * force_n[1] - r_world[1] * force_n[0], modal }
     }
 }

@@ -4,7 +4,7 @@ use nalgebra::DVector;
 use rapier3d_f64::math::glamx::EulerRot;
 use rapier3d_f64::prelude::*;
 
-use crate::arm::ArmModel;
+use crate::arm::StationRows;
 use crate::drive::DriveState;
 use crate::robot::Shape;
 use crate::scenario::{PayloadSpec, Scenario, ScenarioError};
@@ -29,19 +29,10 @@ pub struct ArmPiece {
     pub depth_m: f64,
     /// Half extents of its bounding box in its own frame, m (for drawing).
     pub half_extents_m: [f64; 3],
+    /// Its station's shape rows over the arm's coordinates (set when the scene is built).
+    pub rows: StationRows,
     pub(crate) body: RigidBodyHandle,
     pub(crate) collider: ColliderHandle,
-}
-
-/// A piece's pose, for drawing.
-#[derive(Debug, Clone)]
-pub struct PiecePose {
-    /// Part name.
-    pub name: String,
-    /// World pose.
-    pub pose: Pose,
-    /// Half extents, m.
-    pub half_extents_m: [f64; 3],
 }
 
 impl ArmPiece {
@@ -62,6 +53,7 @@ impl ArmPiece {
             local_rotation,
             depth_m: 0.0,
             half_extents_m: half,
+            rows: StationRows([DVector::zeros(0), DVector::zeros(0), DVector::zeros(0)]),
             body: RigidBodyHandle::invalid(),
             collider: ColliderHandle::invalid(),
         }
@@ -132,7 +124,7 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
         let half_length = 0.5 * string.length_m;
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
         pieces.push((
-            ArmPiece::new("string", clamp.station_m, lateral, normal, along_arm, [half_length, radius, radius]),
+            ArmPiece::new("string", clamp.station_m, lateral, normal, along_arm, [radius, half_length, radius]),
             SharedShape::cylinder(half_length, radius),
         ));
     }
@@ -140,10 +132,9 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
 }
 
 /// World pose of a piece from the arm's state: the section at its station carries it rigidly.
-pub fn pose_piece(arm: &ArmModel, piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m: [f64; 3]) -> Pose {
+pub fn pose_piece(piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m: [f64; 3]) -> Pose {
     let x = piece.station_m;
-    let [u, v] = arm.deflection_at(x, q);
-    let slope = arm.slope_at(x, q);
+    let [u, v, slope] = piece.rows.displacement(q);
     let y = piece.lateral_m;
     let body = [x + u - y * slope, y + v];
     let (s, c) = hub.angle_rad.sin_cos();

@@ -29,8 +29,6 @@ use crate::scenario::{ContactMethod, DampenerSpec, Face, PayloadSpec, Scenario, 
 pub use clamp::FrictionGrip;
 use geometry::{ArmPiece, pose_piece, shapes_of_robot};
 
-pub use geometry::PiecePose;
-
 /// The arm's shapes touch the pads and nothing else (not each other, not the ground).
 const ARM_GROUPS: InteractionGroups = InteractionGroups::new(Group::GROUP_1, Group::GROUP_2, InteractionTestMode::And);
 /// The pads touch the arm's shapes.
@@ -95,7 +93,12 @@ pub struct Scene {
     pub grip: Option<FrictionGrip>,
     /// Index of the piece carrying the clamp.
     grip_palm: Option<usize>,
+    /// Stations at which a frame samples the centreline, with their rows.
+    centreline: Vec<(f64, crate::arm::StationRows)>,
 }
+
+/// Stations along the arm at which a frame samples the centreline.
+const CENTRELINE_STATIONS: usize = 40;
 
 /// Errors building or stepping a scene.
 #[derive(Debug, thiserror::Error)]
@@ -138,7 +141,8 @@ impl Scene {
                     .collision_groups(ARM_GROUPS)
                     .friction(0.0);
                 let collider = world.insert_collider(collider, Some(body));
-                ArmPiece { body, collider, ..piece }
+                let rows = arm.arm.station_rows(piece.station_m);
+                ArmPiece { body, collider, rows, ..piece }
             })
             .collect();
         world.insert_body(RigidBodyBuilder::fixed());
@@ -157,7 +161,13 @@ impl Scene {
             rapier_load: Vec::new(),
             grip: None,
             grip_palm: None,
+            centreline: Vec::new(),
         };
+        let length = scene.arm.arm.length_m();
+        scene.centreline = (0..=CENTRELINE_STATIONS)
+            .map(|i| length * i as f64 / CENTRELINE_STATIONS as f64)
+            .map(|x| (x, scene.arm.arm.station_rows(x)))
+            .collect();
         for spec in &scenario.spec.dampeners {
             let pad = scene.insert_pad(spec, scenario)?;
             scene.pads.push(pad);
@@ -270,7 +280,7 @@ impl Scene {
         let hub = self.hub();
         let q = self.arm.sample().q;
         for piece in &self.pieces {
-            let pose = pose_piece(&self.arm.arm, piece, &hub, &q, self.pivot_m);
+            let pose = pose_piece(piece, &hub, &q, self.pivot_m);
             if let Some(body) = self.world.bodies.get_mut(piece.body) {
                 if next_kinematic {
                     body.set_next_kinematic_position(pose);
@@ -302,7 +312,7 @@ impl Scene {
         }
         if let (Some(grip), Some(palm)) = (self.grip.as_mut(), self.grip_palm) {
             let sample = self.arm.sample();
-            let pose = pose_piece(&self.arm.arm, &self.pieces[palm], &sample.hub, &sample.q, self.pivot_m);
+            let pose = pose_piece(&self.pieces[palm], &sample.hub, &sample.q, self.pivot_m);
             grip.step(pose, h_s);
         }
         Ok(())
@@ -467,19 +477,72 @@ impl Scene {
         }
     }
 
-    /// World pose of each pad (they move on their springs with the `rapier` method).
-    pub fn pad_poses(&self) -> Vec<Pose> {
-        self.pads.iter().map(|p| *self.world.bodies[p.body].position()).collect()
+    /// What is drawn and never changes shape: each piece's and pad's name and half extents (m).
+    pub fn layout(&self) -> SceneLayout {
+        let pads = self
+            .pads
+            .iter()
+            .map(|p| (p.spec.name.clone(), [0.5 * p.spec.length_m, 0.5 * p.spec.thickness_m, 0.5 * p.spec.width_m]));
+        SceneLayout {
+            pieces: self.pieces.iter().map(|p| (p.name.clone(), p.half_extents_m)).collect(),
+            pads: pads.collect(),
+            pivot_m: self.pivot_m,
+            length_m: self.arm.arm.length_m(),
+        }
     }
 
-    /// Poses of every arm piece for drawing.
-    pub fn piece_poses(&self) -> Vec<PiecePose> {
-        self.pieces
+    /// The scene's state for drawing, from the arm's current state (poses in `layout` order).
+    pub fn frame(&self) -> Frame {
+        let sample = self.arm.sample();
+        let pieces = self.pieces.iter().map(|p| pose_piece(p, &sample.hub, &sample.q, self.pivot_m)).collect();
+        let pads = self.pads.iter().map(|p| *self.world.bodies[p.body].position()).collect();
+        let contacts = self
+            .pads
             .iter()
+            .filter(|p| p.force_n > 0.0)
             .map(|p| {
-                let pose = self.world.bodies[p.body].position();
-                PiecePose { name: p.name.clone(), pose: *pose, half_extents_m: p.half_extents_m }
+                let point = [p.point_m[0] + self.pivot_m[0], p.point_m[1] + self.pivot_m[1], self.pivot_m[2]];
+                (p.spec.name.clone(), point, [p.force_n * p.normal_world[0], p.force_n * p.normal_world[1]])
             })
-            .collect()
+            .collect();
+        let centreline = self
+            .centreline
+            .iter()
+            .map(|(x, rows)| {
+                let [u, v, _] = rows.displacement(&sample.q);
+                (*x, [u, v])
+            })
+            .collect();
+        Frame { t_s: sample.t_s, hub_angle_rad: sample.hub.angle_rad, pieces, pads, contacts, centreline }
     }
+}
+
+/// The unchanging part of what is drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneLayout {
+    /// Piece names and half extents, m.
+    pub pieces: Vec<(String, [f64; 3])>,
+    /// Pad names and half extents, m.
+    pub pads: Vec<(String, [f64; 3])>,
+    /// Pivot in the world, m.
+    pub pivot_m: [f64; 3],
+    /// Arm length, m.
+    pub length_m: f64,
+}
+
+/// The scene at one instant, for drawing.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Time, s.
+    pub t_s: f64,
+    /// Hub angle, rad.
+    pub hub_angle_rad: f64,
+    /// World pose of each piece (layout order).
+    pub pieces: Vec<Pose>,
+    /// World pose of each pad.
+    pub pads: Vec<Pose>,
+    /// Pads in contact: name, world point (m), force on the arm (world X, Y, N).
+    pub contacts: Vec<(String, [f64; 3], [f64; 2])>,
+    /// Centreline: station (m) and displacement in the hub frame (axial, transverse, m).
+    pub centreline: Vec<(f64, [f64; 2])>,
 }
