@@ -133,6 +133,9 @@ pub struct RunSummary {
     pub pairs: Vec<PairSummary>,
     /// The friction clamp's slip, if the string is held by one.
     pub string_slip: Option<SlipSummary>,
+    /// ω_max·dt of the highest mode the model keeps: an explicit integrator is stable only
+    /// below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
+    pub highest_omega_dt: f64,
 }
 
 /// Runs a scenario at `fidelity` (its own if `None`), capturing no frames.
@@ -281,6 +284,7 @@ fn summarize(
         peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
         residual: residual(&deflection, scenario.drive_end_s()),
         pairs,
+        highest_omega_dt: arm.highest_omega_rad_s * scenario.spec.time.step_s,
         string_slip: scene.grip.as_ref().map(|g| SlipSummary {
             squeeze_n: g.squeeze_n,
             max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),

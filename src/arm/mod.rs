@@ -133,6 +133,9 @@ pub struct ArmModel {
     pub basis: DMatrix<f64>,
     /// Clamped natural frequencies of the kept modes, rad/s (empty for rigid and fe).
     pub modal_omegas_rad_s: Vec<f64>,
+    /// Highest natural frequency the model keeps, rad/s (0 for rigid): what limits an explicit
+    /// integrator's step.
+    pub highest_omega_rad_s: f64,
     pub(crate) mass: DMatrix<f64>,
     pub(crate) stiffness: DMatrix<f64>,
     pub(crate) damping: DMatrix<f64>,
@@ -192,6 +195,11 @@ impl ArmModel {
             first_moment_kg_m: beam.first_moment_kg_m,
             tip_rows,
             basis,
+            highest_omega_rad_s: match fidelity {
+                Fidelity::Rigid => 0.0,
+                Fidelity::Modal { modes: n } => modes.omegas_rad_s[n - 1],
+                Fidelity::Fe => modes.omegas_rad_s.last().copied().unwrap_or(0.0),
+            },
             modal_omegas_rad_s,
             fidelity,
             options,
