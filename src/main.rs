@@ -39,7 +39,7 @@ enum Command {
         #[arg(long)]
         no_record: bool,
         /// Rate at which steps without contact are recorded, Hz (steps in contact always are).
-        #[arg(long, default_value_t = 50.0)]
+        #[arg(long, default_value_t = 25.0)]
         record_rate: f64,
     },
     /// Run scenarios and compare them with their regression baselines.

@@ -56,7 +56,7 @@ pub struct RunOptions {
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { fidelity: None, record_rate_hz: 50.0, capture_frames: false }
+        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false }
     }
 }
 

@@ -211,6 +211,18 @@ impl ArmSimulation {
         Ok(())
     }
 
+    /// Hub state and elastic coordinates q, q̇ at the current state, without the outputs
+    /// [`Self::sample`] computes (torque, energies): what the step loop needs.
+    pub fn kinematics(&self) -> (DriveState, DVector<f64>, DVector<f64>) {
+        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+        let s = &self.state;
+        let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
+        if let HubDrive::Free { .. } = self.drive {
+            hub.accel_rad_s2 = s.a[0];
+        }
+        (hub, q, qd)
+    }
+
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
         let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };

@@ -58,6 +58,18 @@ pub struct Pad {
     pub touching: Option<String>,
     /// The pad's mounting spring (`rapier` method).
     spring: Option<PadSpring>,
+    /// What tells, without rapier, that the arm is far from it.
+    watch: PadWatch,
+}
+
+/// The arm's face point at a pad's station, to measure the clearance cheaply.
+#[derive(Debug, Clone)]
+struct PadWatch {
+    rows: crate::arm::StationRows,
+    /// Body-frame y of the face that meets the pad, m.
+    face_lateral_m: f64,
+    /// Extra clearance for shapes standing out beyond the face, plus 1 cm, m.
+    margin_m: f64,
 }
 
 /// A pad body's linear spring–damper to its rest position (`rapier` method).
@@ -246,6 +258,23 @@ impl Scene {
             .friction(0.0)
             .mass(scenario.spec.contact.pad_mass_kg);
         let collider = self.world.insert_collider(shape, Some(body));
+        // How far any shape riding on the arm near the pad stands out beyond the arm's face.
+        let reach_x = 0.5 * spec.length_m;
+        let protrusion = self
+            .pieces
+            .iter()
+            .filter(|p| {
+                !p.is_arm_element
+                    && (p.station_m - spec.station_m).abs()
+                        <= reach_x + p.half_extents_m.iter().fold(0.0, |a: f64, b| a.max(*b))
+            })
+            .map(|p| p.lateral_m.abs() + p.half_extents_m.iter().fold(0.0, |a: f64, b| a.max(*b)) - half_depth)
+            .fold(0.0, f64::max);
+        let watch = PadWatch {
+            rows: self.arm.arm.station_rows(spec.station_m),
+            face_lateral_m: sign * half_depth,
+            margin_m: protrusion + 0.01,
+        };
         Ok(Pad {
             spec: spec.clone(),
             normal_world,
@@ -257,6 +286,7 @@ impl Scene {
             point_m: [0.0; 2],
             touching: None,
             spring,
+            watch,
         })
     }
 
@@ -271,14 +301,13 @@ impl Scene {
 
     /// The hub state at the arm's current time.
     pub fn hub(&self) -> DriveState {
-        self.arm.sample().hub
+        self.arm.kinematics().0
     }
 
     /// Pose of each rapier shape from the arm's state: each at its station, turned with the
     /// section there.
     fn pose_pieces(&mut self, next_kinematic: bool) {
-        let hub = self.hub();
-        let q = self.arm.sample().q;
+        let (hub, q, _) = self.arm.kinematics();
         for piece in &self.pieces {
             let pose = pose_piece(piece, &hub, &q, self.pivot_m);
             if let Some(body) = self.world.bodies.get_mut(piece.body) {
@@ -293,7 +322,9 @@ impl Scene {
 
     /// Advances the scene by `h_s` seconds (the order of the module doc).
     pub fn step(&mut self, h_s: f64) -> Result<(), SceneError> {
-        self.pose_pieces(false);
+        if self.method == ContactMethod::Rapier {
+            self.pose_pieces(false);
+        }
         self.arm.load = self.loads_from_rapier();
         self.arm.contacts = match self.method {
             ContactMethod::Compliant => self.compliant_contacts(h_s),
@@ -311,8 +342,8 @@ impl Scene {
             self.measure_rapier_forces(h_s);
         }
         if let (Some(grip), Some(palm)) = (self.grip.as_mut(), self.grip_palm) {
-            let sample = self.arm.sample();
-            let pose = pose_piece(&self.pieces[palm], &sample.hub, &sample.q, self.pivot_m);
+            let (hub, q, _) = self.arm.kinematics();
+            let pose = pose_piece(&self.pieces[palm], &hub, &q, self.pivot_m);
             grip.step(pose, h_s);
         }
         Ok(())
@@ -321,8 +352,7 @@ impl Scene {
     /// Loads measured in rapier's last step, as generalized forces on the arm now: the pads'
     /// (`rapier` method) and the friction clamp's correction.
     fn loads_from_rapier(&self) -> GeneralizedLoad {
-        let hub = self.hub();
-        let q = self.arm.sample().q;
+        let (hub, q, _) = self.arm.kinematics();
         let arm = &self.arm.arm;
         let mut load = GeneralizedLoad::zero(arm.elastic_dofs());
         let grip = self.grip.as_ref().map(|g| (g.station_m, g.correction_force_n));
@@ -334,21 +364,37 @@ impl Scene {
 
     /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
     fn compliant_contacts(&mut self, h_s: f64) -> Vec<crate::arm::ArmContact> {
-        self.world.detect_collisions(&(), &());
         let reach = self.contact_reach(h_s);
+        // rapier's narrow phase is most of a step's cost: skip it while every pad is clearly
+        // out of reach.
+        if self.pads.iter().all(|p| self.clearance_m(p) > reach + p.watch.margin_m) {
+            return Vec::new();
+        }
+        self.pose_pieces(false);
+        self.world.detect_collisions(&(), &());
         let points: Vec<PointContact> = (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect();
         points.into_iter().map(|c| self.arm.arm.arm_contact(c)).collect()
     }
 
+    /// Distance from the arm's face at a pad's station to the pad's face along its normal, m.
+    fn clearance_m(&self, pad: &Pad) -> f64 {
+        let (hub, q, _) = self.arm.kinematics();
+        let [u, v, phi] = pad.watch.rows.displacement(&q);
+        let (x, y) = (pad.spec.station_m + u - pad.watch.face_lateral_m * phi, pad.watch.face_lateral_m + v);
+        let (s, c) = hub.angle_rad.sin_cos();
+        let point = [self.pivot_m[0] + c * x - s * y, self.pivot_m[1] + s * x + c * y];
+        let n = pad.normal_world;
+        n[0] * (point[0] - pad.face_centre_m[0]) + n[1] * (point[1] - pad.face_centre_m[1])
+    }
+
     /// Each pad's force at the end of the step, from its contact on the arm's new state.
     fn measure_compliant_forces(&mut self) {
-        let sample = self.arm.sample();
-        let qd = self.arm_velocities();
+        let (hub, q, qd) = self.arm.kinematics();
         for pad in &mut self.pads {
             pad.force_n = 0.0;
         }
         for c in &self.arm.contacts {
-            let state = c.state(&sample.hub, &sample.q, &qd);
+            let state = c.state(&hub, &q, &qd);
             let pad = &mut self.pads[c.contact.pair];
             pad.force_n = state.force_n;
             pad.point_m = state.point_m;
@@ -360,8 +406,11 @@ impl Scene {
 
     /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
     fn contact_reach(&self, h_s: f64) -> f64 {
-        let s = self.arm.sample();
-        let speed = s.tip_velocity_world_m_s[0].hypot(s.tip_velocity_world_m_s[1]);
+        // A bound on any arm point's speed: the hub's rotation at the tip plus the tip's
+        // elastic speed.
+        let (hub, _, qd) = self.arm.kinematics();
+        let [ru, rv, _] = self.arm.arm.tip_rows();
+        let speed = hub.rate_rad_s.abs() * (self.arm.arm.length_m() + 1.0) + ru.dot(&qd).hypot(rv.dot(&qd));
         (3.0 * speed * h_s).max(2e-3)
     }
 
@@ -421,14 +470,8 @@ impl Scene {
             impact_speed_m_s: 1.0,
         };
         let contact = self.arm.arm.arm_contact(probe);
-        contact.state(&self.hub(), &self.arm.sample().q, &self.arm_velocities()).rate_m_s
-    }
-
-    /// q̇ of the arm's state.
-    fn arm_velocities(&self) -> nalgebra::DVector<f64> {
-        let s = self.arm.state();
-        let n = self.arm.arm.elastic_dofs();
-        if s.v.len() == n { s.v.clone() } else { s.v.rows(1, n).into_owned() }
+        let (hub, q, qd) = self.arm.kinematics();
+        contact.state(&hub, &q, &qd).rate_m_s
     }
 
     /// Spring–damper force of each pad's mount, held over the rapier step.
