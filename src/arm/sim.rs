@@ -254,21 +254,6 @@ impl ArmSimulation {
             q,
         }
     }
-
-    /// Deformed centreline in the world at `samples` + 1 stations from pivot to tip, m.
-    pub fn centreline_world_m(&self, samples: usize) -> Vec<[f64; 2]> {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
-        let (hub, q, _) = system.split(self.state.t, &self.state.x, &self.state.v);
-        let (sn, cs) = hub.angle_rad.sin_cos();
-        let l = self.arm.length_m();
-        (0..=samples)
-            .map(|i| {
-                let x = l * i as f64 / samples.max(1) as f64;
-                let [u, v] = self.arm.deflection_at(x, &q);
-                [cs * (x + u) - sn * v, sn * (x + u) + cs * v]
-            })
-            .collect()
-    }
 }
 
 fn prepend(first: f64, rest: &DVector<f64>) -> DVector<f64> {

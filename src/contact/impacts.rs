@@ -72,11 +72,6 @@ impl ImpactTracker {
     pub fn impacts(&self) -> Vec<Impact> {
         self.impacts.iter().copied().chain(self.open).collect()
     }
-
-    /// Whether the pair is in contact at the last sample.
-    pub fn in_contact(&self) -> bool {
-        self.open.is_some()
-    }
 }
 
 #[cfg(test)]

@@ -119,11 +119,3 @@ fn cubic_step(depth_m: f64, full_depth_m: f64) -> f64 {
     let s = (depth_m / full_depth_m).clamp(0.0, 1.0);
     s * s * (3.0 - 2.0 * s)
 }
-
-/// Effective Hertz stiffness K = (4/3) E* √R*, N/m^1.5, of two spheres (or a sphere on a flat
-/// with `radius2_m` = ∞) from their moduli and Poisson ratios.
-pub fn hertz_stiffness(e1_pa: f64, nu1: f64, e2_pa: f64, nu2: f64, radius1_m: f64, radius2_m: f64) -> f64 {
-    let e_star = 1.0 / ((1.0 - nu1 * nu1) / e1_pa + (1.0 - nu2 * nu2) / e2_pa);
-    let r_star = 1.0 / (1.0 / radius1_m + 1.0 / radius2_m);
-    4.0 / 3.0 * e_star * r_star.sqrt()
-}

@@ -5,4 +5,4 @@ mod impacts;
 mod law;
 
 pub use impacts::{Impact, ImpactTracker};
-pub use law::{ForceLaw, hertz_stiffness};
+pub use law::ForceLaw;
