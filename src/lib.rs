@@ -18,3 +18,4 @@ pub mod robot;
 pub mod run;
 pub mod scenario;
 pub mod scene;
+pub mod select;

@@ -199,6 +199,15 @@ fn print_summary(path: &Path, s: &RunSummary) {
     );
     println!("model               {}, {}, contact {}", s.model, s.integrator, s.contact_method);
     println!("static w/l          1/{:.0}: {}", 1.0 / s.static_w_over_l, s.stiffness_class);
+    println!("model choice        {}", s.model_reason);
+    let a = &s.motion_advice;
+    println!(
+        "motion advice       {} (seed §4); this drive: {:.2} °/s² against {:.1}: {}",
+        a.advice,
+        a.peak_accel_deg_s2,
+        a.limit_deg_s2,
+        if a.within { "within" } else { "outside the advice" }
+    );
     println!(
         "simulated           {:.3} s in {} steps of {} s, wall {:.3} s ({:.0}x real time)",
         s.simulated_s,

@@ -101,6 +101,8 @@ pub struct RunSummary {
     pub payload_kg: f64,
     /// Model fidelity used.
     pub model: String,
+    /// Why that fidelity.
+    pub model_reason: String,
     /// Integrator.
     pub integrator: String,
     /// Contact method.
@@ -119,6 +121,8 @@ pub struct RunSummary {
     pub static_w_over_l: f64,
     /// The seed's class for that ratio.
     pub stiffness_class: String,
+    /// The seed's motion advice for the class, against the drive.
+    pub motion_advice: crate::select::MotionAdvice,
     /// Largest |transverse tip deflection| in the hub frame, m.
     pub max_tip_deflection_m: f64,
     /// That over the arm length.
@@ -145,7 +149,11 @@ pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummar
 
 /// Runs a scenario with `options`.
 pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
-    let fidelity = options.fidelity.unwrap_or(scenario.spec.model);
+    let choice = match options.fidelity {
+        Some(fidelity) => crate::select::Choice { fidelity, reason: "set on the command line".into() },
+        None => scenario.fidelity()?,
+    };
+    let fidelity = choice.fidelity;
     let mut scene = Scene::with_fidelity(scenario, fidelity)?;
     let h = scenario.spec.time.step_s;
     let end = scenario.duration_s();
@@ -167,7 +175,8 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
         keeper.keep(&scene, &mut series, options.capture_frames, i + 1 == steps);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
-    let summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
+    let mut summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
+    summary.model_reason = choice.reason;
     Ok((summary, series))
 }
 
@@ -270,6 +279,7 @@ fn summarize(
         robot: scenario.robot.name.clone(),
         payload_kg,
         model: fidelity.to_string(),
+        model_reason: String::new(),
         integrator: format!("{:?}", scenario.spec.integrator),
         contact_method: format!("{:?}", scenario.spec.contact.method).to_lowercase(),
         step_s: scenario.spec.time.step_s,
@@ -278,6 +288,7 @@ fn summarize(
         wall_time_s,
         static_w_over_l: w_over_l,
         stiffness_class: StiffnessClass::of_ratio(w_over_l).describe().to_string(),
+        motion_advice: crate::select::motion_advice(scenario, StiffnessClass::of_ratio(w_over_l)),
         max_tip_deflection_m,
         max_w_over_l: max_tip_deflection_m / length,
         peak_drive_torque_n_m: peak_torque,

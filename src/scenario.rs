@@ -54,8 +54,9 @@ pub struct ScenarioSpec {
     /// How contact forces are computed.
     #[serde(default)]
     pub contact: ContactSpec,
-    /// Model fidelity.
-    pub model: Fidelity,
+    /// Model fidelity (default `auto`: the cheapest the scene needs, [`crate::select`]).
+    #[serde(default)]
+    pub model: ModelSpec,
     /// Physical options (stiffening, gravity).
     #[serde(default)]
     pub physics: PhysicsSpec,
@@ -64,6 +65,21 @@ pub struct ScenarioSpec {
     pub integrator: IntegratorKind,
     /// Time step and span.
     pub time: TimeSpec,
+}
+
+/// The model a scenario asks for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ModelSpec {
+    /// The cheapest fidelity the scene needs.
+    #[default]
+    Auto,
+    /// Rigid arm.
+    Rigid,
+    /// The first `modes` clamped modes.
+    Modal { modes: usize },
+    /// Every FE DOF.
+    Fe,
 }
 
 /// The payload.
@@ -285,7 +301,7 @@ impl Scenario {
         let spec = &self.spec;
         let beam =
             self.beam_spec().and_then(|b| BeamModel::new(b).map_err(|e| self.invalid("payload", e.to_string())))?;
-        if let Fidelity::Modal { modes } = spec.model
+        if let ModelSpec::Modal { modes } = spec.model
             && !(1..=beam.dofs()).contains(&modes)
         {
             return Err(self.invalid(
@@ -454,6 +470,17 @@ impl Scenario {
             allowed: e.to_string(),
         })?;
         ArmModel::new(BeamModel::new(spec)?, fidelity, self.arm_options())
+    }
+
+    /// The fidelity to run at: the scenario's, or the one `auto` chooses, with the reason.
+    pub fn fidelity(&self) -> Result<crate::select::Choice, ScenarioError> {
+        let fixed = |fidelity| Ok(crate::select::Choice { fidelity, reason: "set in the scenario".into() });
+        match self.spec.model {
+            ModelSpec::Auto => crate::select::choose(self).map_err(|e| self.invalid("model", e.to_string())),
+            ModelSpec::Rigid => fixed(Fidelity::Rigid),
+            ModelSpec::Modal { modes } => fixed(Fidelity::Modal { modes }),
+            ModelSpec::Fe => fixed(Fidelity::Fe),
+        }
     }
 
     /// The hub drive.

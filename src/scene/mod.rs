@@ -126,7 +126,7 @@ pub enum SceneError {
 impl Scene {
     /// Builds the world of a scenario at its own fidelity.
     pub fn new(scenario: &Scenario) -> Result<Self, SceneError> {
-        Self::with_fidelity(scenario, scenario.spec.model)
+        Self::with_fidelity(scenario, scenario.fidelity()?.fidelity)
     }
 
     /// Builds the world of a scenario at `fidelity`.

@@ -1,0 +1,135 @@
+//! The model a scene needs (`model = { kind = "auto" }`, the default), and the seed's motion
+//! advice (§4) for the arm's class.
+//!
+//! The cheapest fidelity that resolves what the scene excites:
+//! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
+//!   jerk-limited (an S-curve excites nothing the arm can answer);
+//! - otherwise **modal(n)**, n the number of clamped modes below the highest frequency the scene
+//!   excites, at least 1:
+//!   - a pad the arm strikes: an impact of duration t_c ≈ π √(m_eff / k) (m_eff the arm's
+//!     first-mode mass at the pad's station) loads modes up to 2.5 / t_c, where the half-sine
+//!     pulse's spectrum has fallen below a tenth of its peak;
+//!   - a pad the arm rests on under its own weight (its static deflection at the stop closes the
+//!     gap) is a support, not an impact, and adds nothing;
+//!   - an S-curve drive with jerk time t_j excites up to 1 / t_j; uniform and trapezoidal drives
+//!     jump in acceleration and their quasi-static load is carried by the modes already kept.
+//! - **fe** never by default: it is the reference.
+//!
+//! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
+
+use serde::Serialize;
+
+use crate::analysis::StiffnessClass;
+use crate::arm::Fidelity;
+use crate::beam::{BeamError, BeamModel};
+use crate::scenario::{DriveSpec, Scenario};
+
+/// The fidelity chosen and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Choice {
+    /// The fidelity.
+    pub fidelity: Fidelity,
+    /// Why, in a sentence.
+    pub reason: String,
+}
+
+/// Picks the cheapest fidelity the scenario needs.
+pub fn choose(scenario: &Scenario) -> Result<Choice, BeamError> {
+    let beam =
+        BeamModel::new(scenario.beam_spec().map_err(|e| BeamError::invalid("payload", f64::NAN, e.to_string()))?)?;
+    let modes = beam.modes()?;
+    let g = scenario.spec.physics.gravity_m_s2;
+    let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
+    let frequencies = modes.frequencies_hz();
+    let below = |f_max: f64| frequencies.iter().take_while(|f| **f <= f_max).filter(|f| **f > 0.0).count();
+    let mut reasons = Vec::new();
+    let mut n = 0;
+    for pad in &scenario.spec.dampeners {
+        let station_shape = beam.point_rows(pad.station_m)[1].dot(&modes.shapes.column(0));
+        let m_eff = 1.0 / station_shape.powi(2).max(1e-30);
+        let (resting, stiffness) = pad_kind(scenario, &beam, pad)?;
+        if resting {
+            reasons.push(format!("{} supports the arm under its weight (quasi-static)", pad.name));
+            continue;
+        }
+        let t_c = std::f64::consts::PI * (m_eff / stiffness).sqrt();
+        let k = below(2.5 / t_c).max(1);
+        reasons.push(format!(
+            "impacts on {} last ≈ {:.0} ms and load modes up to {:.0} Hz: {k} mode(s)",
+            pad.name,
+            1e3 * t_c,
+            2.5 / t_c
+        ));
+        n = n.max(k);
+    }
+    let jerk_limited = matches!(scenario.spec.drive, DriveSpec::SCurve { .. } | DriveSpec::Hold { .. });
+    if let DriveSpec::SCurve { .. } = scenario.spec.drive {
+        let t_j = scenario.motion.peak_accel_rad_s2() / scenario.motion.peak_jerk_rad_s3();
+        let k = below(1.0 / t_j);
+        reasons.push(format!("the S-curve's jerk time {t_j:.2} s excites up to {:.2} Hz: {k} mode(s)", 1.0 / t_j));
+        n = n.max(k);
+    }
+    let fidelity = if n == 0 && class == StiffnessClass::Rigid && scenario.spec.dampeners.is_empty() && jerk_limited {
+        reasons.push("the arm is in the seed's rigid class".into());
+        Fidelity::Rigid
+    } else {
+        if n == 0 {
+            reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
+        }
+        Fidelity::Modal { modes: n.max(1) }
+    };
+    Ok(Choice { fidelity, reason: reasons.join("; ") })
+}
+
+/// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes
+/// the gap), and the pad's stiffness for an impact estimate, N/m (a nonlinear law's secant at
+/// 1 mm).
+fn pad_kind(
+    scenario: &Scenario,
+    beam: &BeamModel,
+    pad: &crate::scenario::DampenerSpec,
+) -> Result<(bool, f64), BeamError> {
+    let theta = pad.angle_deg.to_radians();
+    let g = scenario.spec.physics.gravity_m_s2;
+    let load = -g * (theta.sin() * &beam.axial_mass + theta.cos() * &beam.transverse_mass);
+    let d = beam.static_displacement(&load)?;
+    let v = beam.point_rows(pad.station_m)[1].dot(&d);
+    let toward = match pad.face {
+        crate::scenario::Face::Upper => v,
+        crate::scenario::Face::Lower => -v,
+    };
+    Ok((toward > pad.gap_m, pad.law.force_n(1e-3, 0.0, 1.0) / 1e-3))
+}
+
+/// The seed's §4 advice for an arm's class, and how the scenario's drive compares.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MotionAdvice {
+    /// The advice, in the seed's words.
+    pub advice: String,
+    /// The drive's peak acceleration, deg/s².
+    pub peak_accel_deg_s2: f64,
+    /// The limit that applies to this drive's profile, deg/s².
+    pub limit_deg_s2: f64,
+    /// Whether the drive keeps to it (and to the recommended profile).
+    pub within: bool,
+}
+
+/// The seed's recommended acceleration limits (§4) for `class`, against the scenario's drive.
+pub fn motion_advice(scenario: &Scenario, class: StiffnessClass) -> MotionAdvice {
+    let s_curve = matches!(scenario.spec.drive, DriveSpec::SCurve { .. });
+    let peak = scenario.motion.peak_accel_rad_s2().to_degrees();
+    let (advice, limit, profile_ok) = match class {
+        StiffnessClass::Rigid => ("trapezoidal drive, acceleration at start and stop ≤ 7–8 °/s²", 7.0, true),
+        StiffnessClass::RigidFlexible if s_curve => ("trapezoidal ≤ 5 °/s², or S-curve ≤ about 9 °/s²", 9.0, true),
+        StiffnessClass::RigidFlexible => ("trapezoidal ≤ 5 °/s², or S-curve ≤ about 9 °/s²", 5.0, true),
+        StiffnessClass::Flexible => ("S-curve, acceleration ≤ 7–8 °/s²", 7.0, s_curve),
+        StiffnessClass::BeyondYield => ("beyond the seed's bands: stiffen the arm", 0.0, false),
+    };
+    let uniform = matches!(scenario.spec.drive, DriveSpec::Uniform { .. });
+    MotionAdvice {
+        advice: advice.into(),
+        peak_accel_deg_s2: peak,
+        limit_deg_s2: limit,
+        within: profile_ok && !uniform && peak <= limit,
+    }
+}

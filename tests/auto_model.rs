@@ -1,0 +1,79 @@
+//! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
+//! contact force and peak tip deflection, and no cheaper fidelity is.
+
+use std::path::{Path, PathBuf};
+
+use pipearm::arm::Fidelity;
+use pipearm::run::{RunSummary, run};
+use pipearm::scenario::{DriveSpec, Scenario};
+
+fn shipped() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "toml") && !p.file_name().unwrap().to_string_lossy().starts_with('.')
+        })
+        .collect();
+    paths.sort();
+    paths
+}
+
+fn peak_force(s: &RunSummary) -> f64 {
+    s.pairs.iter().map(|p| p.peak_force_n).fold(0.0, f64::max)
+}
+
+/// Largest relative difference of peak force and peak tip deflection.
+fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
+    let rel = |x: f64, r: f64| (x - r).abs() / r.abs().max(1e-12);
+    rel(peak_force(a), peak_force(reference)).max(rel(a.max_tip_deflection_m, reference.max_tip_deflection_m))
+}
+
+#[test]
+fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
+    for path in shipped() {
+        let s = Scenario::load(&path).unwrap();
+        let chosen = s.fidelity().unwrap().fidelity;
+        let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
+        let (auto, _) = run(&s, Some(chosen)).unwrap();
+        let name = &s.spec.name;
+        println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));
+        assert!(off(&auto, &fe) <= 0.02, "{name}: {chosen} is {} from fe", off(&auto, &fe));
+        let cheaper: Vec<Fidelity> = match chosen {
+            Fidelity::Rigid => vec![],
+            Fidelity::Modal { modes } => {
+                std::iter::once(Fidelity::Rigid).chain((1..modes).map(|m| Fidelity::Modal { modes: m })).collect()
+            }
+            Fidelity::Fe => panic!("auto never picks fe"),
+        };
+        for fidelity in cheaper {
+            let (summary, _) = run(&s, Some(fidelity)).unwrap();
+            println!("  {fidelity}: {:.3} % from fe", 100.0 * off(&summary, &fe));
+            assert!(off(&summary, &fe) > 0.02, "{name}: the cheaper {fidelity} is within 2 % too");
+        }
+    }
+}
+
+#[test]
+fn motion_advice_flags_drives_beyond_the_seed_limits() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let mut s = Scenario::load(&path).unwrap();
+    let (within, _) = run(&s, None).unwrap();
+    assert!(within.motion_advice.within, "{:?}", within.motion_advice);
+    // 0 → 90° in 5 s with a 20 % ramp: 22.5 °/s², beyond the seed's 5 °/s² for this class.
+    s.spec.drive = DriveSpec::Trapezoidal {
+        start_deg: 0.0,
+        end_deg: 90.0,
+        duration_s: 5.0,
+        accel_deg_s2: None,
+        ramp_fraction: Some(0.2),
+    };
+    s.motion = s.spec.drive.motion().unwrap();
+    let (fast, _) = run(&s, None).unwrap();
+    assert!(
+        !fast.motion_advice.within && (fast.motion_advice.peak_accel_deg_s2 - 22.5).abs() < 1e-9,
+        "{:?}",
+        fast.motion_advice
+    );
+}
