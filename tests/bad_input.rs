@@ -90,8 +90,8 @@ fn load_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn scenario_errors_name_file_key_and_range() {
-    let m = load_error("unknown", |t| t.replace("modes = 3", "modes = 3\nmode_count = 3"));
-    assert!(m.contains("mode_count"), "{m}");
+    let m = load_error("unknown", |t| t.replace("step_s = 0.002", "step_s = 0.002\nstep_count = 3"));
+    assert!(m.contains("step_count"), "{m}");
     let m = load_error("missing", |t| t.replace("step_s = 0.002\n", ""));
     assert!(m.contains("step_s"), "{m}");
     let m = load_error("negative-step", |t| t.replace("step_s = 0.002", "step_s = -0.002"));
@@ -102,7 +102,7 @@ fn scenario_errors_name_file_key_and_range() {
     assert!(m.contains("drive.limit") && m.contains("exactly one"), "{m}");
     let m = load_error("integrator", |t| t.replace("rho_inf = 0.8", "rho_inf = 1.5"));
     assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
-    let m = load_error("modes", |t| t.replace("modes = 3", "modes = 500"));
+    let m = load_error("modes", |t| t.replace("kind = \"auto\"", "kind = \"modal\"\nmodes = 500"));
     assert!(m.contains("model.modes") && m.contains("1 ..= 72"), "{m}");
     let m = load_error("beyond-limit", |t| t.replace("end_deg = 90.0", "end_deg = 120.0"));
     assert!(m.contains("drive.end_deg") && m.contains("limits"), "{m}");
