@@ -18,4 +18,5 @@ pub mod robot;
 pub mod run;
 pub mod scenario;
 pub mod scene;
+pub mod seed;
 pub mod select;

@@ -56,6 +56,15 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Run the seed paper's experiment families (scenarios/seed/), in parallel: a chart, a table
+    /// and one recording per variant.
+    Seed {
+        /// Section to run (e.g. 3.1.1-drive); all if omitted.
+        section: Option<String>,
+        /// Output folder (charts and recordings under <out>/seed/).
+        #[arg(long, default_value = "recordings")]
+        out: PathBuf,
+    },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -94,6 +103,7 @@ fn main() -> Result<()> {
         ),
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
+        Command::Seed { section, out } => seed(section.as_deref(), &out),
     }
 }
 
@@ -167,6 +177,31 @@ fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool)
     if failed > 0 {
         bail!(
             "{failed} quantities outside their tolerance (docs/regression.md); `pipearm check --bless` accepts a change on purpose"
+        );
+    }
+    Ok(())
+}
+
+fn seed(only: Option<&str>, out: &Path) -> Result<()> {
+    let sections = pipearm::seed::sections(Path::new("scenarios/seed")).context("reading scenarios/seed/")?;
+    let chosen: Vec<_> = sections.into_iter().filter(|(name, _)| only.is_none_or(|o| name == o)).collect();
+    if chosen.is_empty() {
+        bail!("no section `{}` under scenarios/seed/", only.unwrap_or_default());
+    }
+    for (section, files) in chosen {
+        let variants = pipearm::seed::run_family(&files, true)?;
+        let dir = out.join("seed").join(&section);
+        for v in &variants {
+            let pads: Vec<String> = v.scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
+            write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series, &pads)?;
+        }
+        let chart = out.join("seed").join(format!("{section}.svg"));
+        pipearm::seed::chart(&chart, &section, &variants)?;
+        println!(
+            "## {section}\n\n{}\nchart {}, recordings {}\n",
+            pipearm::seed::table(&variants),
+            chart.display(),
+            dir.display()
         );
     }
     Ok(())
