@@ -78,7 +78,7 @@ fn string_size_changes_deflection_and_torque_slightly_growing_with_size() {
     let f = family("3.3.2-size");
     let sizes = [get(&f, "2-3-8"), get(&f, "2-7-8"), get(&f, "4-1-2")];
     for pair in sizes.windows(2) {
-        let (a, b) = (pair[0].summary, &pair[1].summary);
+        let (a, b) = (&pair[0].summary, &pair[1].summary);
         assert!(b.max_tip_deflection_m > a.max_tip_deflection_m && b.peak_drive_torque_n_m > a.peak_drive_torque_n_m);
         // "Slightly": within 15 % step to step.
         assert!(
