@@ -137,12 +137,7 @@ fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.
 fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool) -> Result<()> {
     if scenarios.is_empty() {
-        scenarios = std::fs::read_dir("scenarios")
-            .context("reading scenarios/")?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-            .collect();
-        scenarios.sort();
+        scenarios = pipearm::scenario::scenario_files(Path::new("scenarios")).context("reading scenarios/")?;
     }
     let mut failed = 0;
     let mut report = Vec::new();

@@ -18,6 +18,17 @@ use crate::drive::{DriveError, MotionProfile, SCurveLimit, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 
+/// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
+pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .filter(|p| !p.file_name().is_some_and(|n| n.to_string_lossy().starts_with('.')))
+        .collect();
+    files.sort();
+    Ok(files)
+}
+
 /// Errors reading or checking a scenario; each names the file.
 #[derive(Debug, Error)]
 pub enum ScenarioError {

@@ -31,11 +31,7 @@ pub fn sections(root: &Path) -> std::io::Result<Vec<(String, Vec<PathBuf>)>> {
         if !dir.is_dir() {
             continue;
         }
-        let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)?
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-            .collect();
-        files.sort();
+        let files = crate::scenario::scenario_files(&dir)?;
         out.push((dir.file_name().unwrap_or_default().to_string_lossy().into_owned(), files));
     }
     out.sort_by(|a, b| a.0.cmp(&b.0));

@@ -8,16 +8,7 @@ use pipearm::run::{RunSummary, run};
 use pipearm::scenario::{DriveSpec, Scenario};
 
 fn shipped() -> Vec<PathBuf> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.extension().is_some_and(|x| x == "toml") && !p.file_name().unwrap().to_string_lossy().starts_with('.')
-        })
-        .collect();
-    paths.sort();
-    paths
+    pipearm::scenario::scenario_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios")).unwrap()
 }
 
 fn peak_force(s: &RunSummary) -> f64 {

@@ -17,15 +17,7 @@ fn scenario(name: &str) -> Scenario {
 }
 
 fn shipped() -> Vec<PathBuf> {
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(manifest().join("scenarios"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.extension().is_some_and(|x| x == "toml") && !p.file_name().unwrap().to_string_lossy().starts_with('.')
-        })
-        .collect();
-    paths.sort();
-    paths
+    pipearm::scenario::scenario_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios")).unwrap()
 }
 
 /// Failing rows of `scenario` against the shipped baseline of `baseline_of`.
