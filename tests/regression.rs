@@ -128,3 +128,16 @@ fn pipearm_check_prints_a_failing_row_and_exits_non_zero() {
     let row = stdout.lines().find(|l| l.contains("peak_force_n")).unwrap_or_default();
     assert!(row.contains("FAIL") && row.contains("1494.589"), "{stdout}");
 }
+
+#[test]
+fn a_family_gives_the_same_results_on_one_or_two_worker_threads() {
+    let files = pipearm::scenario::scenario_files(&manifest().join("scenarios/seed/3.1.1-drive")).unwrap();
+    let summaries = |threads: usize| -> Vec<String> {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| pipearm::seed::run_family(&files, false).unwrap())
+            .iter()
+            .map(|v| serde_json::to_string(&v.summary).unwrap())
+            .collect()
+    };
+    assert_eq!(summaries(1), summaries(2));
+}
