@@ -31,6 +31,9 @@ pub struct ArmPiece {
     pub half_extents_m: [f64; 3],
     /// Its station's shape rows over the arm's coordinates (set when the scene is built).
     pub rows: StationRows,
+    /// Whether it can come near a pad (set when the scene is built): only those are moved in
+    /// rapier every step.
+    pub near_pad: bool,
     pub(crate) body: RigidBodyHandle,
     pub(crate) collider: ColliderHandle,
 }
@@ -54,6 +57,7 @@ impl ArmPiece {
             depth_m: 0.0,
             half_extents_m: half,
             rows: StationRows([DVector::zeros(0), DVector::zeros(0), DVector::zeros(0)]),
+            near_pad: true,
             body: RigidBodyHandle::invalid(),
             collider: ColliderHandle::invalid(),
         }

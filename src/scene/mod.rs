@@ -198,7 +198,17 @@ impl Scene {
             scene.grip = Some(FrictionGrip::new(scenario, clamp, palm, palm_pose, &string, shape)?);
             scene.grip_palm = scene.pieces.iter().position(|p| &p.name == at);
         }
+        scene.mark_pieces_near_pads();
         Ok(scene)
+    }
+
+    /// Marks the shapes whose extent along the arm comes within 0.5 m of a pad.
+    fn mark_pieces_near_pads(&mut self) {
+        for piece in &mut self.pieces {
+            let reach = piece.half_extents_m.iter().fold(0.0_f64, |a, b| a.max(*b)) + 0.5;
+            piece.near_pad =
+                self.pads.iter().any(|p| (p.spec.station_m - piece.station_m).abs() <= 0.5 * p.spec.length_m + reach);
+        }
     }
 
     /// Places a pad against the undeformed arm at its stop, `gap_m` from the named face.
@@ -308,7 +318,9 @@ impl Scene {
     /// section there.
     fn pose_pieces(&mut self, next_kinematic: bool) {
         let (hub, q, _) = self.arm.kinematics();
-        for piece in &self.pieces {
+        // Only shapes that can reach a pad: moving the others would only cost rapier's broad
+        // phase (the drawing poses every shape afresh, see `frame`).
+        for piece in self.pieces.iter().filter(|p| p.near_pad) {
             let pose = pose_piece(piece, &hub, &q, self.pivot_m);
             if let Some(body) = self.world.bodies.get_mut(piece.body) {
                 if next_kinematic {
