@@ -98,7 +98,12 @@ fn main() -> Result<()> {
     match Cli::parse().command {
         Command::Run { scenario, model, out, no_record, record_rate } => run_command(
             &scenario,
-            RunOptions { fidelity: model, record_rate_hz: record_rate, capture_frames: !no_record },
+            RunOptions {
+                fidelity: model,
+                record_rate_hz: record_rate,
+                capture_frames: !no_record,
+                ..RunOptions::default()
+            },
             &out,
         ),
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),

@@ -50,13 +50,16 @@ pub struct RunOptions {
     pub fidelity: Option<Fidelity>,
     /// Rate at which steps without contact are kept for a recording, Hz.
     pub record_rate_hz: f64,
-    /// Capture the 3D scene at kept steps (for a recording).
+    /// Capture the 3D scene (for a recording): every step in contact, at `frame_rate_hz`
+    /// otherwise.
     pub capture_frames: bool,
+    /// Rate of 3D frames without contact, Hz.
+    pub frame_rate_hz: f64,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false }
+        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false, frame_rate_hz: 10.0 }
     }
 }
 
@@ -163,8 +166,13 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     if options.capture_frames {
         series.layout = Some(scene.layout());
     }
-    let mut keeper =
-        Keeper { period_s: 1.0 / options.record_rate_hz, last_kept_s: f64::NEG_INFINITY, was_in_contact: false };
+    let mut keeper = Keeper {
+        period_s: 1.0 / options.record_rate_hz,
+        frame_period_s: 1.0 / options.frame_rate_hz,
+        last_kept_s: f64::NEG_INFINITY,
+        last_frame_s: f64::NEG_INFINITY,
+        was_in_contact: false,
+    };
     let started = Instant::now();
     record(&scene, &mut series, &mut trackers);
     keeper.keep(&scene, &mut series, options.capture_frames, false);
@@ -184,7 +192,9 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
 /// others at the record rate, so no peak is lost.
 struct Keeper {
     period_s: f64,
+    frame_period_s: f64,
     last_kept_s: f64,
+    last_frame_s: f64,
     was_in_contact: bool,
 }
 
@@ -192,15 +202,17 @@ impl Keeper {
     fn keep(&mut self, scene: &Scene, series: &mut Series, capture: bool, last: bool) {
         let t = scene.arm.time_s();
         let in_contact = scene.pads.iter().any(|p| p.force_n > 0.0);
-        let due = t - self.last_kept_s >= self.period_s * (1.0 - 1e-9);
-        let keep = in_contact || self.was_in_contact || due || last;
+        let contact = in_contact || self.was_in_contact || last;
+        let due = |since: f64, period: f64| t - since >= period * (1.0 - 1e-9);
+        let keep = contact || due(self.last_kept_s, self.period_s);
         self.was_in_contact = in_contact;
         series.keep.push(keep);
         if keep {
             self.last_kept_s = t;
-            if capture {
-                series.frames.push(scene.frame());
-            }
+        }
+        if capture && (contact || due(self.last_frame_s, self.frame_period_s)) {
+            self.last_frame_s = t;
+            series.frames.push(scene.frame());
         }
     }
 }

@@ -110,7 +110,7 @@ pub struct Scene {
 }
 
 /// Stations along the arm at which a frame samples the centreline.
-const CENTRELINE_STATIONS: usize = 40;
+const CENTRELINE_STATIONS: usize = 20;
 
 /// Errors building or stepping a scene.
 #[derive(Debug, thiserror::Error)]
