@@ -1,6 +1,9 @@
 //! A rigid mass dropped on a dampener with each force law, against the closed forms of
 //! `shared/reference/contact_laws.md` (integrated with RK4 at a step far below the contact time).
 
+mod common;
+
+use common::rel;
 use nalgebra::{DMatrix, DVector};
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::{Dynamics, Integrator, Rk4, State};
@@ -47,10 +50,6 @@ fn drop(mass_kg: f64, v0: f64, law: ForceLaw, step_s: f64) -> Impact {
         }
         assert!(s.t < 10.0, "never separated");
     }
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
 }
 
 #[test]

@@ -1,5 +1,8 @@
 //! The coupled scene: arm + rapier + dampeners.
 
+mod common;
+
+use common::rel;
 use std::path::Path;
 
 use pipearm::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
@@ -12,10 +15,6 @@ use pipearm::scene::Scene;
 
 fn scenario(name: &str) -> Scenario {
     Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap()
-}
-
-fn rel(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
 }
 
 #[test]

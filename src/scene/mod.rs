@@ -23,7 +23,7 @@ mod geometry;
 
 use rapier3d_f64::prelude::*;
 
-use crate::arm::{ArmError, ArmSimulation, GeneralizedLoad, PointContact};
+use crate::arm::{ArmContact, ArmError, ArmSimulation, GeneralizedLoad, PointContact};
 use crate::drive::DriveState;
 use crate::scenario::{ContactMethod, DampenerSpec, Face, PayloadSpec, Scenario, ScenarioError};
 pub use clamp::FrictionGrip;
@@ -375,7 +375,7 @@ impl Scene {
     }
 
     /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
-    fn compliant_contacts(&mut self, h_s: f64) -> Vec<crate::arm::ArmContact> {
+    fn compliant_contacts(&mut self, h_s: f64) -> Vec<ArmContact> {
         let reach = self.contact_reach(h_s);
         // rapier's narrow phase is most of a step's cost: skip it while every pad is clearly
         // out of reach.
@@ -384,8 +384,7 @@ impl Scene {
         }
         self.pose_pieces(false);
         self.world.detect_collisions(&(), &());
-        let points: Vec<PointContact> = (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect();
-        points.into_iter().map(|c| self.arm.arm.arm_contact(c)).collect()
+        (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect()
     }
 
     /// Distance from the arm's face at a pad's station to the pad's face along its normal, m.
@@ -427,7 +426,7 @@ impl Scene {
     }
 
     /// The deepest point of the arm against pad `i`, within `reach` of touching.
-    fn deepest_point(&mut self, i: usize, reach: f64) -> Option<PointContact> {
+    fn deepest_point(&mut self, i: usize, reach: f64) -> Option<ArmContact> {
         let pad = &self.pads[i];
         let mut best: Option<(f64, [f64; 3], &ArmPiece)> = None;
         for piece in &self.pieces {
@@ -450,40 +449,27 @@ impl Scene {
         let (dist, world, piece) = best?;
         let (station_m, lateral_m) = piece.station_of(&self.world.colliders[piece.collider], world);
         let name = piece.name.clone();
-        let reference = [world[0] - self.pivot_m[0], world[1] - self.pivot_m[1]];
-        let closing = self.closing_speed(station_m, lateral_m, i);
-        let pad = &mut self.pads[i];
-        if pad.force_n <= 0.0 {
-            pad.impact_speed_m_s = closing.max(1e-6);
-        }
-        pad.touching = Some(name);
-        Some(PointContact {
+        let point = PointContact {
             pair: i,
             station_m,
             lateral_m,
             normal_world: pad.normal_world,
             depth_m: -dist,
-            reference_point_m: reference,
+            reference_point_m: [world[0] - self.pivot_m[0], world[1] - self.pivot_m[1]],
             law: pad.spec.law,
             impact_speed_m_s: pad.impact_speed_m_s,
-        })
-    }
-
-    /// Speed at which the arm point at (station, lateral) closes on pad `i`, m/s.
-    fn closing_speed(&self, station_m: f64, lateral_m: f64, i: usize) -> f64 {
-        let probe = PointContact {
-            pair: i,
-            station_m,
-            lateral_m,
-            normal_world: self.pads[i].normal_world,
-            depth_m: 0.0,
-            reference_point_m: [0.0; 2],
-            law: self.pads[i].spec.law,
-            impact_speed_m_s: 1.0,
         };
-        let contact = self.arm.arm.arm_contact(probe);
+        // Projected once: the same rows give the closing speed now and the force in the step.
+        let mut contact = self.arm.arm.arm_contact(point);
         let (hub, q, qd) = self.arm.kinematics();
-        contact.state(&hub, &q, &qd).rate_m_s
+        let closing = contact.state(&hub, &q, &qd).rate_m_s;
+        let pad = &mut self.pads[i];
+        if pad.force_n <= 0.0 {
+            pad.impact_speed_m_s = closing.max(1e-6);
+        }
+        pad.touching = Some(name);
+        contact.contact.impact_speed_m_s = pad.impact_speed_m_s;
+        Some(contact)
     }
 
     /// Spring–damper force of each pad's mount, held over the rapier step.
@@ -548,8 +534,9 @@ impl Scene {
 
     /// The scene's state for drawing, from the arm's current state (poses in `layout` order).
     pub fn frame(&self) -> Frame {
-        let sample = self.arm.sample();
-        let pieces = self.pieces.iter().map(|p| pose_piece(p, &sample.hub, &sample.q, self.pivot_m)).collect();
+        // The kinematics only: the torque and energies `sample` would compute are not drawn.
+        let (hub, q, _) = self.arm.kinematics();
+        let pieces = self.pieces.iter().map(|p| pose_piece(p, &hub, &q, self.pivot_m)).collect();
         let pads = self.pads.iter().map(|p| *self.world.bodies[p.body].position()).collect();
         let contacts = self
             .pads
@@ -564,11 +551,11 @@ impl Scene {
             .centreline
             .iter()
             .map(|(x, rows)| {
-                let [u, v, _] = rows.displacement(&sample.q);
+                let [u, v, _] = rows.displacement(&q);
                 (*x, [u, v])
             })
             .collect();
-        Frame { t_s: sample.t_s, hub_angle_rad: sample.hub.angle_rad, pieces, pads, contacts, centreline }
+        Frame { t_s: self.arm.time_s(), hub_angle_rad: hub.angle_rad, pieces, pads, contacts, centreline }
     }
 }
 
