@@ -1,24 +1,34 @@
-//! Cost of one time step of the default arm at each fidelity (generalized-α, prescribed hub).
+//! Cost of one time step: the arm alone at each fidelity, and the whole scene (rapier world,
+//! pads) with each contact method.
 //!
-//! `cargo bench --bench step`; the figures are quoted in docs/model.md.
+//! `cargo bench --bench step`; the figures are quoted in docs/model.md and docs/accuracy.md.
 
 use std::path::Path;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use pipearm::arm::{ArmSimulation, Fidelity};
-use pipearm::scenario::Scenario;
+use pipearm::contact::ForceLaw;
+use pipearm::scenario::{ContactMethod, Scenario};
+use pipearm::scene::Scene;
 
-fn step_cost(c: &mut Criterion) {
-    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+fn default_scenario() -> Scenario {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap()
+}
+
+const FIDELITIES: [Fidelity; 7] = [
+    Fidelity::Rigid,
+    Fidelity::Modal { modes: 1 },
+    Fidelity::Modal { modes: 2 },
+    Fidelity::Modal { modes: 3 },
+    Fidelity::Modal { modes: 4 },
+    Fidelity::Modal { modes: 8 },
+    Fidelity::Fe,
+];
+
+fn arm_step(c: &mut Criterion) {
+    let scenario = default_scenario();
     let mut group = c.benchmark_group("arm_step");
-    let fidelities = [
-        Fidelity::Rigid,
-        Fidelity::Modal { modes: 1 },
-        Fidelity::Modal { modes: 4 },
-        Fidelity::Modal { modes: 8 },
-        Fidelity::Fe,
-    ];
-    for fidelity in fidelities {
+    for fidelity in FIDELITIES {
         let arm = scenario.arm_model(fidelity).unwrap();
         let mut sim = ArmSimulation::new(arm, scenario.hub_drive(), scenario.spec.integrator).unwrap();
         // Start mid-lift, where every term of the equations is active.
@@ -30,5 +40,30 @@ fn step_cost(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step_cost);
+/// One step of the whole scene with the arm at its stop, within reach of its pad (rapier's
+/// narrow phase runs every step): compliant at each fidelity, and the rapier method.
+fn scene_step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("scene_step_at_the_stop");
+    let base = default_scenario();
+    let mut cases: Vec<(String, Scenario, Fidelity)> = [Fidelity::Rigid, Fidelity::Modal { modes: 3 }, Fidelity::Fe]
+        .into_iter()
+        .map(|f| (format!("compliant {f}"), base.clone(), f))
+        .collect();
+    let mut rapier = base.clone();
+    rapier.spec.contact.method = ContactMethod::Rapier;
+    rapier.spec.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
+    cases.push(("rapier modal(3)".into(), rapier, Fidelity::Modal { modes: 3 }));
+    for (name, scenario, fidelity) in cases {
+        let h = scenario.spec.time.step_s;
+        let mut scene = Scene::with_fidelity(&scenario, fidelity).unwrap();
+        // Up to the stop: from here on the arm stays within reach of its pad.
+        while scene.arm.time_s() < 14.9 {
+            scene.step(h).unwrap();
+        }
+        group.bench_function(BenchmarkId::from_parameter(name), |b| b.iter(|| scene.step(h).unwrap()));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, arm_step, scene_step);
 criterion_main!(benches);

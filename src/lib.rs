@@ -9,8 +9,10 @@
 pub mod analysis;
 pub mod arm;
 pub mod beam;
+pub mod bench;
 pub mod contact;
 pub mod drive;
+pub mod guard;
 pub mod integrate;
 pub mod record;
 pub mod regression;

@@ -65,6 +65,23 @@ enum Command {
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
     },
+    /// Speed against accuracy: run a grid of models, steps, integrators, contact methods and
+    /// clamp modes against a converged reference; write a CSV, a chart (SVG, PNG), the stability
+    /// map and a Markdown report per scenario under <out>/<name>/.
+    Bench {
+        /// Scenario files.
+        #[arg(default_value = "scenarios/default.toml")]
+        scenarios: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, default_value = "recordings/bench")]
+        out: PathBuf,
+        /// Timed repeats per point (the median is kept).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// A smaller grid for a quick look.
+        #[arg(long)]
+        quick: bool,
+    },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -109,6 +126,7 @@ fn main() -> Result<()> {
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
         Command::Seed { section, out } => seed(section.as_deref(), &out),
+        Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
     }
 }
 
@@ -201,6 +219,43 @@ fn seed(only: Option<&str>, out: &Path) -> Result<()> {
             "## {section}\n\n{}\nchart {}, recordings {}\n",
             pipearm::seed::table(&variants),
             chart.display(),
+            dir.display()
+        );
+    }
+    Ok(())
+}
+
+fn bench(scenarios: &[PathBuf], out: &Path, repeats: usize, quick: bool) -> Result<()> {
+    use pipearm::bench;
+    let options = bench::BenchOptions { repeats, quick, mesh_check: !quick };
+    let loaded: Vec<Scenario> = scenarios.iter().map(|p| Scenario::load(p)).collect::<Result<_, _>>()?;
+    let command = std::iter::once("pipearm".to_string()).chain(std::env::args().skip(1)).collect::<Vec<_>>().join(" ");
+    for (path, scenario) in scenarios.iter().zip(&loaded) {
+        let bar = indicatif::ProgressBar::new(1).with_style(
+            indicatif::ProgressStyle::with_template("{prefix} [{bar:30}] {pos}/{len} {elapsed} {wide_msg}")
+                .expect("a valid template")
+                .progress_chars("=> "),
+        );
+        bar.set_prefix(scenario.spec.name.clone());
+        let mut progress = |label: &str, done: usize, total: usize| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message(label.to_string());
+        };
+        let result =
+            bench::bench(scenario, &options, &mut progress).with_context(|| format!("{}: bench", path.display()))?;
+        bar.finish_and_clear();
+        let dir = out.join(&scenario.spec.name);
+        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+        std::fs::write(dir.join("points.csv"), bench::points_csv(&result))?;
+        std::fs::write(dir.join("stability.csv"), bench::stability_csv(&result.stability))?;
+        let report = bench::report_markdown(&result, &command);
+        std::fs::write(dir.join("report.md"), &report)?;
+        bench::chart_svg(&dir.join("chart.svg"), &result).map_err(anyhow::Error::msg)?;
+        bench::chart_png(&dir.join("chart.png"), &result).map_err(anyhow::Error::msg)?;
+        println!(
+            "{report}
+wrote {}/{{points.csv, stability.csv, report.md, chart.svg, chart.png}}",
             dir.display()
         );
     }

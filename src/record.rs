@@ -249,12 +249,7 @@ impl Writer<'_> {
             let message = format!("the string slipped {:.1} mm in the jaws", 1e3 * slip.max_slip_m);
             events.push((summary.simulated_s, message, rerun::TextLogLevel::WARN));
         }
-        let limit = match summary.integrator.split_whitespace().next().unwrap_or("") {
-            "SymplecticEuler" => Some(2.0),
-            "Rk4" => Some(8f64.sqrt()),
-            "ExplicitEuler" => Some(0.0),
-            _ => None,
-        };
+        let limit = summary.stability_limit_omega_dt;
         if let Some(limit) = limit.filter(|l| summary.highest_omega_dt > 0.8 * l) {
             let message = format!(
                 "near instability: ω_max·dt = {:.3} against the explicit integrator's limit {limit:.3}",

@@ -5,8 +5,9 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::analysis::{Residual, StiffnessClass, residual};
-use crate::arm::Fidelity;
+use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
+use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::scenario::Scenario;
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 
@@ -143,6 +144,8 @@ pub struct RunSummary {
     /// ω_max·dt of the highest mode the model keeps: an explicit integrator is stable only
     /// below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
     pub highest_omega_dt: f64,
+    /// The integrator's stability limit on ω·dt (`None`: unconditionally stable; 0: none).
+    pub stability_limit_omega_dt: Option<f64>,
 }
 
 /// Runs a scenario at `fidelity` (its own if `None`), capturing no frames.
@@ -174,12 +177,31 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
         was_in_contact: false,
     };
     let started = Instant::now();
-    record(&scene, &mut series, &mut trackers);
+    let first = scene.arm.sample();
+    let mut guard = DivergenceGuard::new(&first, gravity_span_j(scenario, &scene)?);
+    let string_length_m = scenario.pipe_string()?.map_or(f64::INFINITY, |s| s.length_m);
+    record(&scene, &first, &mut series, &mut trackers);
     keeper.keep(&scene, &mut series, options.capture_frames, false);
     for i in 0..steps {
         let step = h.min(end - i as f64 * h);
-        scene.step(step)?;
-        record(&scene, &mut series, &mut trackers);
+        scene.step(step).map_err(|e| diverged_step(scenario, &scene, e))?;
+        let sample = scene.arm.sample();
+        guard.check(&sample, &watched(&scene)).map_err(|d| divergence_error(scenario, &scene, d))?;
+        if let Some(pad) = scene.pads.iter().find(|p| p.compression_m > p.spec.thickness_m) {
+            let what = format!(
+                "pad {} is compressed {:.1} mm, beyond its {:.1} mm thickness",
+                pad.spec.name,
+                1e3 * pad.compression_m,
+                1e3 * pad.spec.thickness_m
+            );
+            return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
+        }
+        if let Some(grip) = scene.grip.as_ref().filter(|g| g.slip_m.abs() > string_length_m) {
+            let what =
+                format!("the string slid {:.3} m in the jaws, out of its {string_length_m:.2} m length", grip.slip_m);
+            return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
+        }
+        record(&scene, &sample, &mut series, &mut trackers);
         keeper.keep(&scene, &mut series, options.capture_frames, i + 1 == steps);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
@@ -217,8 +239,72 @@ impl Keeper {
     }
 }
 
-fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
-    let s = scene.arm.sample();
+/// Total mass × g × twice the reach (arm plus string): the most gravity could release, J.
+fn gravity_span_j(scenario: &Scenario, scene: &Scene) -> Result<f64, SceneError> {
+    let payload_kg: f64 = scenario.payload_masses()?.iter().map(|m| m.mass_kg).sum();
+    let string_m = scenario.pipe_string()?.map_or(0.0, |s| s.length_m);
+    let arm = &scene.arm.arm;
+    let mass_kg = arm.beam.total_mass_kg + payload_kg;
+    Ok(mass_kg * scenario.spec.physics.gravity_m_s2.abs() * 2.0 * (arm.length_m() + string_m))
+}
+
+/// Values of a step the guard watches besides the arm's.
+fn watched(scene: &Scene) -> Vec<(&'static str, f64)> {
+    let pads = scene.pads.iter().map(|p| ("a pad's contact force", p.force_n));
+    pads.chain(scene.grip.as_ref().map(|g| ("the string's slip", g.slip_m))).collect()
+}
+
+/// A step that failed because the state blew up or Newton could not follow it is a divergence.
+fn diverged_step(scenario: &Scenario, scene: &Scene, error: SceneError) -> SceneError {
+    use crate::integrate::IntegrateError;
+    match error {
+        SceneError::Arm(ArmError::Integrate(
+            e @ (IntegrateError::NonFinite { .. } | IntegrateError::NoConvergence { .. }),
+        )) => {
+            let t_s = match e {
+                IntegrateError::NonFinite { t } | IntegrateError::NoConvergence { t, .. } => t,
+                _ => f64::NAN,
+            };
+            divergence_error(scenario, scene, Divergence { t_s, what: e.to_string() })
+        }
+        other => other,
+    }
+}
+
+fn divergence_error(scenario: &Scenario, scene: &Scene, d: Divergence) -> SceneError {
+    let h = scenario.spec.time.step_s;
+    let advice = if scene.grip.is_some() && scene.arm.arm.fidelity == Fidelity::Fe {
+        "the friction clamp's staggered coupling diverges on the full FE arm (docs/accuracy.md): run it on a modal \
+         model (model = auto)"
+            .to_string()
+    } else if scene.grip.is_some() {
+        format!(
+            "the friction clamp's staggered coupling holds at some steps and not others (docs/accuracy.md lists \
+             them): try step_s = {:.3e} s or {:.3e} s, or a rigid clamp",
+            2.0 * h,
+            0.5 * h
+        )
+    } else if scene.method == crate::scenario::ContactMethod::Rapier {
+        let limit = scenario
+            .spec
+            .dampeners
+            .iter()
+            .map(|p| crate::bench::stability::pad_spring_limit_s(&p.law, scenario.spec.contact.pad_mass_kg))
+            .fold(f64::INFINITY, f64::min);
+        format!(
+            "rapier integrates the pad body on its spring-damper explicitly, stable only below {limit:.3e} s: use \
+             step_s <= {:.3e} s, a heavier pad body, or contact.method = \"compliant\"",
+            0.9 * limit
+        )
+    } else {
+        let peak_force_n = scene.pads.iter().map(|p| p.force_n).fold(0.0, f64::max).max(1.0);
+        let penalty = scene.penalty_limits_s(peak_force_n).into_iter().flatten().reduce(f64::min);
+        stability_advice(&scenario.spec.integrator, scene.arm.arm.highest_omega_rad_s, h, penalty)
+    };
+    SceneError::Diverged { t_s: d.t_s, what: d.what, advice }
+}
+
+fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [ImpactTracker]) {
     series.t_s.push(s.t_s);
     series.hub_angle_rad.push(s.hub.angle_rad);
     series.hub_rate_rad_s.push(s.hub.rate_rad_s);
@@ -228,7 +314,7 @@ fn record(scene: &Scene, series: &mut Series, trackers: &mut [ImpactTracker]) {
     series.drive_torque_n_m.push(s.drive_torque_n_m);
     series.energies_j.push([s.energies.kinetic_j, s.energies.strain_j, s.energies.gravity_j]);
     if scene.arm.arm.fidelity != Fidelity::Fe {
-        series.modal_q.push(s.q.iter().copied().collect());
+        series.modal_q.push(s.q.as_slice().to_vec());
     }
     if let Some(grip) = &scene.grip {
         series.string_slip_m.push(grip.slip_m);
@@ -308,6 +394,7 @@ fn summarize(
         residual: residual(&deflection, scenario.drive_end_s()),
         pairs,
         highest_omega_dt: arm.highest_omega_rad_s * scenario.spec.time.step_s,
+        stability_limit_omega_dt: scenario.spec.integrator.stability_limit_omega_dt(),
         string_slip: scene.grip.as_ref().map(|g| SlipSummary {
             squeeze_n: g.squeeze_n,
             max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),

@@ -70,6 +70,7 @@ pub fn run_family(files: &[PathBuf], capture_frames: bool) -> Result<Vec<Variant
 /// (where there are pads) contact force against time, one curve per variant (SVG).
 pub fn chart(path: &Path, title: &str, variants: &[Variant]) -> Result<(), SeedError> {
     let err = |e: &dyn std::fmt::Display| SeedError::Chart { path: path.into(), message: e.to_string() };
+    crate::bench::register_font();
     let contact = variants.iter().any(|v| !v.series.pad_force_n.is_empty());
     let panels = if contact { 4 } else { 3 };
     let root = SVGBackend::new(path, (900, 260 * panels as u32)).into_drawing_area();

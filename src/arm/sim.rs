@@ -161,9 +161,22 @@ impl ArmSimulation {
             self.state.t += h;
             return Ok(());
         }
+        self.advance_halving(h, 0)
+    }
+
+    /// One integrator step of `h`; where Newton's iteration fails (a contact law's kink inside
+    /// the step), the step is retried as two halves, down to 1/64 of it.
+    fn advance_halving(&mut self, h: f64, depth: u32) -> Result<(), ArmError> {
         let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
-        self.integrator.step(&system, &mut self.state, h)?;
-        Ok(())
+        match self.integrator.step(&system, &mut self.state, h) {
+            Err(crate::integrate::IntegrateError::NoConvergence { .. }) if depth < 6 => {
+                // A failed step leaves the state as it was; the integrator's history is dropped.
+                self.integrator.reset();
+                self.advance_halving(0.5 * h, depth + 1)?;
+                self.advance_halving(0.5 * h, depth + 1)
+            }
+            result => Ok(result?),
+        }
     }
 
     /// A jump Δθ̇ of a prescribed rate is an impulse on q: M Δq̇ = −S̃ Δθ̇ (q's momentum equation

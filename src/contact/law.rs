@@ -68,6 +68,31 @@ impl ForceLaw {
         }
     }
 
+    /// The elastic part's tangent stiffness dF/dδ where the elastic force equals `force_n`, N/m
+    /// (what the explicit penalty limit 2√(m_eff/k) needs).
+    pub fn tangent_stiffness_at_force(&self, force_n: f64) -> f64 {
+        let (k, n) = match *self {
+            ForceLaw::Linear { stiffness_n_m, .. } => return stiffness_n_m,
+            ForceLaw::AdamsImpact { stiffness, exponent, .. } => (stiffness, exponent),
+            ForceLaw::HuntCrossley { stiffness, exponent, .. }
+            | ForceLaw::LankaraniNikravesh { stiffness, exponent, .. }
+            | ForceLaw::Flores { stiffness, exponent, .. } => (stiffness, exponent),
+        };
+        let depth_m = (force_n.max(0.0) / k).powf(1.0 / n);
+        k * n * depth_m.powf(n - 1.0)
+    }
+
+    /// The coefficient of restitution the law is set for, if it is one of the restitution-based
+    /// laws.
+    pub fn restitution(&self) -> Option<f64> {
+        match *self {
+            ForceLaw::HuntCrossley { restitution, .. }
+            | ForceLaw::LankaraniNikravesh { restitution, .. }
+            | ForceLaw::Flores { restitution, .. } => Some(restitution),
+            _ => None,
+        }
+    }
+
     /// (K, n, χ) of the three restitution-based laws.
     fn dissipative_hertz(&self) -> Option<(f64, f64, f64)> {
         match *self {

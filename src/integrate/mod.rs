@@ -173,6 +173,32 @@ impl Default for IntegratorKind {
 }
 
 impl IntegratorKind {
+    /// The largest stable ω·dt on an undamped mode: `None` for the unconditionally stable ones,
+    /// `Some(0)` for explicit Euler (unstable at every step), `../shared/reference/integrators.md`.
+    pub fn stability_limit_omega_dt(&self) -> Option<f64> {
+        match *self {
+            IntegratorKind::GeneralizedAlpha { .. } | IntegratorKind::Hht { .. } => None,
+            // Unconditional for 2β ≥ γ ≥ 1/2; otherwise Ω = 1/√(γ/2 − β) (1/√(1/12) = 2√3 at β = 1/6).
+            IntegratorKind::Newmark { beta, gamma } => (2.0 * beta < gamma).then(|| 1.0 / (0.5 * gamma - beta).sqrt()),
+            IntegratorKind::SymplecticEuler => Some(2.0),
+            // Where RK4's stability region crosses the imaginary axis.
+            IntegratorKind::Rk4 => Some(8f64.sqrt()),
+            IntegratorKind::ExplicitEuler => Some(0.0),
+        }
+    }
+
+    /// Short name, as written in scenarios.
+    pub fn name(&self) -> &'static str {
+        match self {
+            IntegratorKind::GeneralizedAlpha { .. } => "generalized-alpha",
+            IntegratorKind::Newmark { .. } => "newmark",
+            IntegratorKind::Hht { .. } => "hht",
+            IntegratorKind::SymplecticEuler => "symplectic-euler",
+            IntegratorKind::Rk4 => "rk4",
+            IntegratorKind::ExplicitEuler => "explicit-euler",
+        }
+    }
+
     /// Builds the integrator, checking its parameters.
     pub fn build(&self) -> Result<Box<dyn Integrator>, IntegrateError> {
         Ok(match *self {

@@ -52,6 +52,10 @@ pub struct Pad {
     impact_speed_m_s: f64,
     /// Force at the end of the last step, N.
     pub force_n: f64,
+    /// How far the pad is compressed at the end of the last step, m (the arm's penetration for
+    /// `compliant`, the pad body's travel for `rapier`); beyond the pad's thickness the run is
+    /// meaningless.
+    pub compression_m: f64,
     /// Point of application of that force (world X, Y), m.
     pub point_m: [f64; 2],
     /// Name of the arm part touching it.
@@ -121,6 +125,9 @@ pub enum SceneError {
     /// In the arm.
     #[error(transparent)]
     Arm(#[from] ArmError),
+    /// The run's energy grew without a source, or its values stopped being finite.
+    #[error("the run diverged at t = {t_s:.4} s: {what}. Advice: {advice}")]
+    Diverged { t_s: f64, what: String, advice: String },
 }
 
 impl Scene {
@@ -293,6 +300,7 @@ impl Scene {
             collider,
             impact_speed_m_s: 0.0,
             force_n: 0.0,
+            compression_m: 0.0,
             point_m: [0.0; 2],
             touching: None,
             spring,
@@ -330,6 +338,33 @@ impl Scene {
                 }
             }
         }
+    }
+
+    /// Per pad, the arm's effective mass at the pad's station along the arm's normal with the hub
+    /// held, 1 / (rᵀ M⁻¹ r), kg. `None` for a rigid arm on a prescribed hub (infinite).
+    pub fn pad_effective_masses_kg(&self) -> Vec<Option<f64>> {
+        let inverse = self.arm.arm.mass.clone().try_inverse().filter(|m| m.nrows() > 0);
+        self.pads
+            .iter()
+            .map(|pad| {
+                let row = &pad.watch.rows.0[1];
+                let m_eff = 1.0 / row.dot(&(inverse.as_ref()? * row));
+                m_eff.is_finite().then_some(m_eff)
+            })
+            .collect()
+    }
+
+    /// Per pad, the explicit stability limit of its penalty contact, 2√(m_eff/k), s, with k the
+    /// law's tangent stiffness at `force_n` ([`Self::pad_effective_masses_kg`] for m_eff).
+    pub fn penalty_limits_s(&self, force_n: f64) -> Vec<Option<f64>> {
+        self.pads
+            .iter()
+            .zip(self.pad_effective_masses_kg())
+            .map(|(pad, m_eff)| {
+                let k = pad.spec.law.tangent_stiffness_at_force(force_n);
+                m_eff.filter(|_| k > 0.0).map(|m| 2.0 * (m / k).sqrt())
+            })
+            .collect()
     }
 
     /// Advances the scene by `h_s` seconds (the order of the module doc).
@@ -403,11 +438,13 @@ impl Scene {
         let (hub, q, qd) = self.arm.kinematics();
         for pad in &mut self.pads {
             pad.force_n = 0.0;
+            pad.compression_m = 0.0;
         }
         for c in &self.arm.contacts {
             let state = c.state(&hub, &q, &qd);
             let pad = &mut self.pads[c.contact.pair];
             pad.force_n = state.force_n;
+            pad.compression_m = state.depth_m.max(0.0);
             pad.point_m = state.point_m;
             if state.force_n <= 0.0 {
                 pad.touching = None;
@@ -491,6 +528,10 @@ impl Scene {
         for (i, pad) in self.pads.iter_mut().enumerate() {
             pad.force_n = 0.0;
             pad.touching = None;
+            if let (Some(spring), Some(body)) = (pad.spring, self.world.bodies.get(pad.body)) {
+                let travel = [0, 1].map(|k| spring.rest_m[k] - body.translation()[k]);
+                pad.compression_m = (travel[0] * pad.normal_world[0] + travel[1] * pad.normal_world[1]).max(0.0);
+            }
             for piece in &self.pieces {
                 let Some(pair) = self.world.narrow_phase.contact_pair(piece.collider, pad.collider) else { continue };
                 let impulse = pair.total_impulse();

@@ -1,0 +1,526 @@
+//! Speed against accuracy: a grid of model fidelities, time steps, integrators, contact methods
+//! and clamp modes, each run timed and compared with a converged reference (`pipearm bench`).
+//!
+//! Every point of the grid is a full run of the scene. Its cost is the wall time of the step
+//! loop per simulated second (median of repeats, one thread); its errors are taken against the
+//! reference of the same physics (same contact law and clamp): the peak contact force, the tip
+//! deflection history (RMS difference over the reference's peak) and the residual vibration's
+//! frequency. The reference is the full FE arm at an eighth of the scene's step or a 200th of
+//! its strongest impact, whichever is shorter; how converged it is is shown by Richardson
+//! extrapolation over the step and by doubling the elements ([`Convergence`]).
+
+mod chart;
+mod report;
+pub mod stability;
+
+use std::time::Instant;
+
+pub use chart::{chart_png, chart_svg, pareto_front, register_font};
+pub use report::{points_csv, report_markdown, stability_csv};
+
+use crate::arm::Fidelity;
+use crate::contact::ForceLaw;
+use crate::integrate::IntegratorKind;
+use crate::run::{RunOptions, RunSummary, Series, run_with};
+use crate::scenario::{Clamp, ContactMethod, PayloadSpec, Scenario};
+use crate::scene::{Scene, SceneError};
+
+/// A run of the bench that failed for a reason other than divergence.
+#[derive(Debug, thiserror::Error)]
+#[error("{what}: {source}")]
+pub struct BenchError {
+    /// Which run.
+    pub what: String,
+    /// Why.
+    pub source: SceneError,
+}
+
+fn labelled(what: impl Into<String>) -> impl FnOnce(SceneError) -> BenchError {
+    let what = what.into();
+    move |source| BenchError { what, source }
+}
+
+/// One point of the grid: how to run the scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Variant {
+    /// What this point varies (`fidelity`, `step: <integrator>`, `contact`, `clamp`).
+    pub axis: String,
+    /// Model fidelity.
+    pub fidelity: Fidelity,
+    /// FE elements along the arm (`None`: the robot's).
+    pub elements: Option<usize>,
+    /// Time integrator.
+    pub integrator: IntegratorKind,
+    /// Time step, s.
+    pub step_s: f64,
+    /// Contact method.
+    pub contact: ContactMethod,
+    /// Pad law made linear (the `rapier` method needs one; its compliant twin shares it).
+    pub linear_pads: bool,
+    /// How the string is held.
+    pub clamp: Clamp,
+}
+
+impl Variant {
+    /// A short label for charts and tables, e.g. `modal(3) generalized-alpha 2ms`.
+    pub fn label(&self) -> String {
+        let model = match (self.fidelity, self.elements) {
+            (Fidelity::Fe, Some(n)) => format!("fe{n}"),
+            (f, _) => f.to_string(),
+        };
+        let mut label = format!("{model} {} {}ms", self.integrator.name(), 1e3 * self.step_s);
+        if self.linear_pads {
+            label += &format!(" {}", format!("{:?}", self.contact).to_lowercase());
+        }
+        if self.clamp == Clamp::Friction {
+            label += " friction";
+        }
+        label
+    }
+
+    /// The physics this point computes, which its reference must share: the pad law. (A
+    /// friction clamp is compared with the rigid clamp's reference: the friction clamp's staggered
+    /// coupling diverges on the FE arm and on some steps of eight modes, docs/accuracy.md, so it
+    /// has no converged reference of its own; its error includes the slip it models.)
+    fn physics(&self) -> bool {
+        self.linear_pads
+    }
+
+    /// The scenario with this point's settings.
+    pub fn scenario(&self, base: &Scenario, linear_laws: &[ForceLaw]) -> Scenario {
+        let mut s = base.clone();
+        s.spec.integrator = self.integrator;
+        s.spec.time.step_s = self.step_s;
+        s.spec.contact.method = self.contact;
+        if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
+            *clamp = self.clamp;
+        }
+        if self.linear_pads {
+            for (pad, law) in s.spec.dampeners.iter_mut().zip(linear_laws) {
+                pad.law = *law;
+            }
+        }
+        if let Some(n) = self.elements {
+            s.robot.arm.elements = n;
+        }
+        s
+    }
+}
+
+/// What one point measured.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// It ran: cost and errors.
+    Ran(Measured),
+    /// The divergence guard stopped it.
+    Diverged { t_s: f64, message: String },
+}
+
+/// Cost and errors of a point that ran.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Measured {
+    /// Wall time per simulated second (median of repeats), s/s.
+    pub cost_s_per_s: f64,
+    /// Largest peak contact force over the pads, N.
+    pub peak_force_n: f64,
+    /// |peak − reference| / reference.
+    pub peak_force_error: f64,
+    /// RMS of the tip deflection's difference from the reference, over the reference's peak.
+    pub tip_rms_error: f64,
+    /// Residual vibration frequency, Hz (NaN: none).
+    pub frequency_hz: f64,
+    /// |f − f_ref| / f_ref (1 when the point has no vibration to measure).
+    pub frequency_error: f64,
+}
+
+/// A point and its outcome.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// How it ran.
+    pub variant: Variant,
+    /// What it measured.
+    pub outcome: Outcome,
+}
+
+impl Point {
+    /// The measurements, if it ran.
+    pub fn measured(&self) -> Option<&Measured> {
+        match &self.outcome {
+            Outcome::Ran(m) => Some(m),
+            Outcome::Diverged { .. } => None,
+        }
+    }
+}
+
+/// A converged solution of one physics (contact law, clamp).
+#[derive(Debug, Clone)]
+pub struct Reference {
+    /// How it was computed.
+    pub variant: Variant,
+    /// Its largest peak contact force, N.
+    pub peak_force_n: f64,
+    /// Its residual frequency, Hz.
+    pub frequency_hz: f64,
+    /// Its tip deflection history (t s, v m).
+    pub tip: Vec<(f64, f64)>,
+    /// Evidence that it is converged.
+    pub convergence: Convergence,
+}
+
+/// Richardson extrapolation of the reference's peak force over the step, and the change when the
+/// elements are doubled.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Convergence {
+    /// (step s, peak force N, frequency Hz) at h, 2h, 4h.
+    pub steps: Vec<(f64, f64, f64)>,
+    /// Observed order p = log2((F₄ₕ − F₂ₕ) / (F₂ₕ − Fₕ)).
+    pub observed_order: f64,
+    /// Richardson estimate of the reference's own error, |Fₕ − F₂ₕ| / (2^p − 1) / Fₕ.
+    pub peak_force_error: f64,
+    /// (elements, peak force N) of the doubled mesh at 2h, and the relative change from the
+    /// robot's mesh at 2h.
+    pub doubled_mesh: Option<(usize, f64, f64)>,
+}
+
+/// How the grid runs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BenchOptions {
+    /// Timed repeats per point (the median is kept).
+    pub repeats: usize,
+    /// A smaller grid (fewer steps and fidelities) for a quick look.
+    pub quick: bool,
+    /// Also check the reference by doubling the FE mesh (the slowest run of the bench).
+    pub mesh_check: bool,
+}
+
+impl Default for BenchOptions {
+    fn default() -> Self {
+        BenchOptions { repeats: 3, quick: false, mesh_check: true }
+    }
+}
+
+/// The results of a bench of one scene.
+#[derive(Debug, Clone)]
+pub struct BenchResult {
+    /// Scenario name.
+    pub scenario: String,
+    /// The scene's own step, s.
+    pub base_step_s: f64,
+    /// The fidelity `auto` chose.
+    pub auto_fidelity: Fidelity,
+    /// The references, one per physics.
+    pub references: Vec<Reference>,
+    /// Every grid point.
+    pub points: Vec<Point>,
+    /// The stability map.
+    pub stability: stability::StabilityMap,
+}
+
+/// The grid for a scene: each axis varied around the scene's own settings.
+pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
+    let h0 = scenario.spec.time.step_s;
+    let steps: Vec<f64> = if quick { vec![0.5, 1.0, 2.0] } else { vec![0.125, 0.25, 0.5, 1.0, 2.0, 4.0] }
+        .into_iter()
+        .map(|f| f * h0)
+        .collect();
+    let robot_elements = scenario.robot.arm.elements;
+    let base_clamp = match &scenario.spec.payload {
+        PayloadSpec::String { clamp, .. } => Some(*clamp),
+        _ => None,
+    };
+    let base = Variant {
+        axis: "fidelity".into(),
+        fidelity: auto,
+        elements: None,
+        integrator: IntegratorKind::default(),
+        step_s: h0,
+        contact: ContactMethod::Compliant,
+        linear_pads: false,
+        clamp: base_clamp.unwrap_or_default(),
+    };
+    let mut out = Vec::new();
+    let modal_counts: Vec<usize> = if quick { vec![1, 3, 8] } else { (1..=8).collect() };
+    let fidelities =
+        std::iter::once(Fidelity::Rigid).chain(modal_counts.into_iter().map(|n| Fidelity::Modal { modes: n }));
+    out.extend(fidelities.map(|fidelity| Variant { fidelity, ..base.clone() }));
+    let meshes =
+        if quick { vec![robot_elements / 2] } else { vec![robot_elements / 4, robot_elements / 2, robot_elements] };
+    out.extend(meshes.into_iter().map(|n| Variant {
+        fidelity: Fidelity::Fe,
+        elements: Some(n.max(2)),
+        ..base.clone()
+    }));
+    for integrator in integrators() {
+        let axis = format!("step: {}", integrator.name());
+        out.extend(steps.iter().map(|&step_s| Variant { axis: axis.clone(), integrator, step_s, ..base.clone() }));
+    }
+    for fidelity in [Fidelity::Modal { modes: 1 }, Fidelity::Modal { modes: 8 }, Fidelity::Fe] {
+        let axis = format!("step: {fidelity}");
+        let coarse = steps.iter().filter(|&&h| fidelity != Fidelity::Fe || h >= 0.5 * h0);
+        out.extend(coarse.map(|&step_s| Variant { axis: axis.clone(), fidelity, step_s, ..base.clone() }));
+    }
+    if !scenario.spec.dampeners.is_empty() {
+        // rapier's pad body is explicit: it needs steps well below the scene's (stability map).
+        let fine = [h0 / 32.0, h0 / 16.0];
+        for contact in [ContactMethod::Compliant, ContactMethod::Rapier] {
+            let axis = format!("contact: {}", format!("{contact:?}").to_lowercase());
+            let extra = if contact == ContactMethod::Rapier && !quick { &fine[..] } else { &[] };
+            out.extend(extra.iter().chain(&steps).map(|&step_s| Variant {
+                axis: axis.clone(),
+                contact,
+                linear_pads: true,
+                step_s,
+                ..base.clone()
+            }));
+        }
+    }
+    if let Some(clamp) = base_clamp {
+        let other = if clamp == Clamp::Rigid { Clamp::Friction } else { Clamp::Rigid };
+        let axis = format!("clamp: {}", format!("{other:?}").to_lowercase());
+        out.extend(steps.iter().filter(|&&h| h >= 0.25 * h0).map(|&step_s| Variant {
+            axis: axis.clone(),
+            clamp: other,
+            step_s,
+            ..base.clone()
+        }));
+    }
+    out
+}
+
+/// The integrators the bench compares, with the scene defaults' parameters.
+pub fn integrators() -> [IntegratorKind; 6] {
+    [
+        IntegratorKind::default(),
+        IntegratorKind::Newmark { beta: 0.25, gamma: 0.5 },
+        IntegratorKind::Hht { alpha: -0.1 },
+        IntegratorKind::SymplecticEuler,
+        IntegratorKind::Rk4,
+        IntegratorKind::ExplicitEuler,
+    ]
+}
+
+/// Linear pad laws equivalent to the scene's: the tangent stiffness at `force_n` and the damping
+/// that gives the law's restitution on the arm's effective mass (ζ = −ln e / √(π² + ln² e)).
+pub fn linear_laws(scenario: &Scenario, force_n: f64) -> Result<Vec<ForceLaw>, SceneError> {
+    let scene = Scene::with_fidelity(scenario, Fidelity::Modal { modes: 3 })?;
+    let masses = scene.pad_effective_masses_kg();
+    Ok(scenario
+        .spec
+        .dampeners
+        .iter()
+        .zip(masses)
+        .map(|(pad, m_eff)| {
+            let law = pad.law;
+            if let ForceLaw::Linear { .. } = law {
+                return law;
+            }
+            let k = law.tangent_stiffness_at_force(force_n);
+            let e = law.restitution().unwrap_or(0.6).clamp(1e-3, 1.0);
+            let zeta = -e.ln() / (std::f64::consts::PI.powi(2) + e.ln().powi(2)).sqrt();
+            let m = m_eff.unwrap_or(1.0);
+            ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: 2.0 * zeta * (k * m).sqrt() }
+        })
+        .collect())
+}
+
+/// Runs a variant `repeats` times; the first run's results, the median wall time.
+pub fn run_timed(
+    scenario: &Scenario,
+    fidelity: Fidelity,
+    repeats: usize,
+) -> Result<(RunSummary, Series, f64), SceneError> {
+    let options = RunOptions { fidelity: Some(fidelity), ..RunOptions::default() };
+    let mut walls = Vec::with_capacity(repeats.max(1));
+    let mut first = None;
+    for _ in 0..repeats.max(1) {
+        let started = Instant::now();
+        let (summary, series) = run_with(scenario, &options)?;
+        // The whole run, model building included: what a user waits for.
+        walls.push(started.elapsed().as_secs_f64());
+        first.get_or_insert((summary, series));
+    }
+    walls.sort_by(f64::total_cmp);
+    let (summary, series) = first.expect("at least one run");
+    let cost = walls[walls.len() / 2] / summary.simulated_s.max(1e-12);
+    Ok((summary, series, cost))
+}
+
+/// Largest peak contact force of a run, N (0 without pads).
+pub fn peak_force_n(summary: &RunSummary) -> f64 {
+    summary.pairs.iter().map(|p| p.peak_force_n).fold(0.0, f64::max)
+}
+
+/// The transverse tip deflection history of a run.
+pub fn tip_history(series: &Series) -> Vec<(f64, f64)> {
+    series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect()
+}
+
+/// RMS of `history − reference` at the history's times (reference interpolated linearly), over
+/// the reference's largest |value|.
+pub fn rms_error_over_peak(history: &[(f64, f64)], reference: &[(f64, f64)]) -> f64 {
+    let peak = reference.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    if history.is_empty() || peak == 0.0 {
+        return f64::NAN;
+    }
+    let mut j = 0;
+    let mut sum = 0.0;
+    for &(t, v) in history {
+        while j + 2 < reference.len() && reference[j + 1].0 < t {
+            j += 1;
+        }
+        let (a, b) = (reference[j], reference[(j + 1).min(reference.len() - 1)]);
+        let w = if b.0 > a.0 { ((t - a.0) / (b.0 - a.0)).clamp(0.0, 1.0) } else { 0.0 };
+        let r = a.1 + w * (b.1 - a.1);
+        sum += (v - r).powi(2);
+    }
+    (sum / history.len() as f64).sqrt() / peak
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    if b == 0.0 { if a == 0.0 { 0.0 } else { 1.0 } } else { ((a - b) / b).abs() }
+}
+
+/// The reference's step: an eighth of the scene's, or a 200th of its strongest impact if that is
+/// shorter (measured on a run of the scene's own model and step), s.
+pub fn reference_step_s(base: &Scenario) -> Result<f64, SceneError> {
+    let h0 = base.spec.time.step_s;
+    let (summary, _) = crate::run::run(base, None)?;
+    let strongest = summary
+        .pairs
+        .iter()
+        .filter_map(|p| p.impacts.iter().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n)))
+        .map(|i| i.duration_s())
+        .fold(f64::INFINITY, f64::min);
+    Ok((h0 / 8.0).min(strongest / 200.0))
+}
+
+/// Computes the reference of a variant's physics: the full FE arm at the robot's mesh and
+/// [`reference_step_s`], with a rigid clamp, and its convergence evidence.
+pub fn reference(
+    base: &Scenario,
+    physics_of: &Variant,
+    linear: &[ForceLaw],
+    mesh_check: bool,
+) -> Result<Reference, SceneError> {
+    let h_ref = reference_step_s(base)?;
+    let fidelity = Fidelity::Fe;
+    let at = |step_s: f64, elements: Option<usize>| Variant {
+        axis: "reference".into(),
+        fidelity,
+        elements,
+        integrator: IntegratorKind::default(),
+        step_s,
+        clamp: Clamp::Rigid,
+        ..physics_of.clone()
+    };
+    let mut steps = Vec::new();
+    let mut finest = None;
+    for factor in [1.0, 2.0, 4.0] {
+        let variant = at(factor * h_ref, None);
+        let (summary, series) = run_with(
+            &variant.scenario(base, linear),
+            &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() },
+        )?;
+        steps.push((variant.step_s, peak_force_n(&summary), summary.residual.frequency_hz));
+        finest.get_or_insert((variant, summary, series));
+    }
+    let (f1, f2, f4) = (steps[0].1, steps[1].1, steps[2].1);
+    let observed_order = ((f4 - f2) / (f2 - f1)).abs().log2();
+    // Extrapolate only where the differences shrink at a plausible order; otherwise they are at
+    // the level of the peak's sampling by the step, and the last difference is the estimate.
+    let peak_force_error = if (0.5..=6.0).contains(&observed_order) {
+        relative(f1 + (f1 - f2) / (2f64.powf(observed_order) - 1.0), f1)
+    } else {
+        relative(f2, f1)
+    };
+    let doubled_mesh = if mesh_check {
+        let n = 2 * base.robot.arm.elements;
+        let variant = at(2.0 * h_ref, Some(n));
+        let (summary, _) = run_with(
+            &variant.scenario(base, linear),
+            &RunOptions { fidelity: Some(Fidelity::Fe), ..RunOptions::default() },
+        )?;
+        let f = peak_force_n(&summary);
+        Some((n, f, relative(f, f2)))
+    } else {
+        None
+    };
+    let (variant, summary, series) = finest.expect("three runs");
+    Ok(Reference {
+        variant,
+        peak_force_n: peak_force_n(&summary),
+        frequency_hz: summary.residual.frequency_hz,
+        tip: tip_history(&series),
+        convergence: Convergence { steps, observed_order, peak_force_error, doubled_mesh },
+    })
+}
+
+/// Runs one point against its reference.
+pub fn measure(
+    base: &Scenario,
+    v: &Variant,
+    linear: &[ForceLaw],
+    r: &Reference,
+    repeats: usize,
+) -> Result<Point, SceneError> {
+    let outcome = match run_timed(&v.scenario(base, linear), v.fidelity, repeats) {
+        Ok((summary, series, cost_s_per_s)) => {
+            let peak = peak_force_n(&summary);
+            let f = summary.residual.frequency_hz;
+            Outcome::Ran(Measured {
+                cost_s_per_s,
+                peak_force_n: peak,
+                peak_force_error: relative(peak, r.peak_force_n),
+                tip_rms_error: rms_error_over_peak(&tip_history(&series), &r.tip),
+                frequency_hz: f,
+                frequency_error: if f.is_finite() { relative(f, r.frequency_hz) } else { 1.0 },
+            })
+        }
+        Err(SceneError::Diverged { t_s, what, .. }) => Outcome::Diverged { t_s, message: what },
+        Err(e) => return Err(e),
+    };
+    Ok(Point { variant: v.clone(), outcome })
+}
+
+/// Runs the whole bench of a scene; `progress` is told each point's label as it starts.
+pub fn bench(
+    scenario: &Scenario,
+    options: &BenchOptions,
+    progress: &mut dyn FnMut(&str, usize, usize),
+) -> Result<BenchResult, BenchError> {
+    let auto = scenario.fidelity().map_err(|e| labelled("model choice")(e.into()))?.fidelity;
+    let variants = grid(scenario, auto, options.quick);
+    let main_physics = &variants[0];
+    let total = variants.len() + 3;
+    progress("reference (fe, fine step)", 0, total);
+    let mut references = vec![
+        reference(scenario, main_physics, &[], options.mesh_check).map_err(labelled("reference (fe, fine step)"))?,
+    ];
+    let linear = linear_laws(scenario, references[0].peak_force_n).map_err(labelled("linear pad laws"))?;
+    let mut points = Vec::with_capacity(variants.len());
+    for (i, v) in variants.iter().enumerate() {
+        progress(&v.label(), i + 1, total);
+        let r = match references.iter().position(|r| r.variant.physics() == v.physics()) {
+            Some(k) => &references[k],
+            None => {
+                let r =
+                    reference(scenario, v, &linear, false).map_err(labelled(format!("reference of {}", v.label())))?;
+                references.push(r);
+                references.last().expect("just pushed")
+            }
+        };
+        points.push(measure(scenario, v, &linear, r, options.repeats).map_err(labelled(v.label()))?);
+    }
+    progress("stability map", total - 2, total);
+    let stability =
+        stability::map(scenario, auto, &references[0], &linear, options.quick).map_err(labelled("stability map"))?;
+    progress("done", total, total);
+    Ok(BenchResult {
+        scenario: scenario.spec.name.clone(),
+        base_step_s: scenario.spec.time.step_s,
+        auto_fidelity: auto,
+        references,
+        points,
+        stability,
+    })
+}

@@ -1,0 +1,352 @@
+//! The stability map: the largest stable step of each integrator on each arm model, found by
+//! bisection and set beside the theory (`../shared/reference/integrators.md`); the pad contacts'
+//! penalty limit; the largest step the friction clamp's coupling and the rapier contact survive.
+//!
+//! An arm run is unstable when its vibration energy grows without a source: the arm, undamped,
+//! is held still at the horizontal, started from its static sag with every mode moving, and
+//! watched for 400 periods of its highest mode; it is unstable when the largest energy over the
+//! second half exceeds twice that over the first half (a bounded oscillation repeats itself, a
+//! growing one doubles), or a value stops being finite. A scene run is unstable when the
+//! divergence guard stops it ([`crate::guard`]).
+
+use nalgebra::DVector;
+
+use super::Reference;
+use crate::arm::{ArmModel, ArmOptions, ArmSimulation, Fidelity, HubDrive};
+use crate::beam::BeamModel;
+use crate::contact::ForceLaw;
+use crate::drive::MotionProfile;
+use crate::integrate::IntegratorKind;
+use crate::robot::StringSpec;
+use crate::run::{RunOptions, run_with};
+use crate::scenario::{Clamp, PayloadSpec, Scenario};
+use crate::scene::{Scene, SceneError};
+
+/// Smallest ω·dt tried: below it a method that is still unstable is called unstable at any step.
+pub const FLOOR_OMEGA_DT: f64 = 0.05;
+/// Largest ω·dt tried (and a step of at most 1 s): a method stable there is called unconditional.
+pub const CAP_OMEGA_DT: f64 = 1000.0;
+
+/// What bisection found for one method on one model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Limit {
+    /// Stable up to this step and unstable just above it, s.
+    Step(f64),
+    /// Stable even at the largest step tried, s.
+    Unconditional(f64),
+    /// Unstable even at the smallest step tried, s.
+    Never(f64),
+}
+
+/// One integrator on one arm model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArmRow {
+    /// The integrator.
+    pub integrator: IntegratorKind,
+    /// The model (`fe24` for FE with 24 elements).
+    pub model: String,
+    /// Its highest natural frequency, rad/s.
+    pub omega_max_rad_s: f64,
+    /// The theoretical limit on ω·dt (`None`: unconditional; 0: none).
+    pub theory_omega_dt: Option<f64>,
+    /// What bisection found.
+    pub measured: Limit,
+}
+
+/// One pad's contact limit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactRow {
+    /// Pad name.
+    pub pad: String,
+    /// The arm's effective mass at the pad (the bench's auto model), kg.
+    pub effective_mass_kg: f64,
+    /// The law's tangent stiffness at the reference's peak force, N/m.
+    pub stiffness_n_m: f64,
+    /// 2√(m_eff/k), s.
+    pub penalty_limit_s: f64,
+    /// The `rapier` method's pad body on its spring–damper (linear law k, c; pad mass m), whose
+    /// force rapier integrates explicitly (symplectic Euler): stable only below
+    /// (2/ω)(√(1 + ζ²) − ζ), ω = √(k/m), ζ = c / (2√(km)), s.
+    pub pad_spring_limit_s: f64,
+}
+
+/// The largest stable step of a whole scene run, for one setting.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SceneRow {
+    /// What was run (`symplectic-euler, compliant`, `rapier`, `friction clamp, 121 kg`).
+    pub what: String,
+    /// What bisection found.
+    pub measured: Limit,
+    /// The predicted limit, if there is one, s.
+    pub predicted_s: Option<f64>,
+}
+
+/// The whole map.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StabilityMap {
+    /// Integrator × arm model.
+    pub arm: Vec<ArmRow>,
+    /// Pads.
+    pub contact: Vec<ContactRow>,
+    /// Scene runs bisected: explicit integration of the pad contact.
+    pub scene: Vec<SceneRow>,
+    /// The friction clamp over steps, strings and models.
+    pub clamp: Vec<ClampRun>,
+}
+
+/// The undamped arm of a scenario at `fidelity` (`elements` overrides the robot's mesh).
+pub fn undamped_arm(scenario: &Scenario, fidelity: Fidelity) -> Result<ArmModel, SceneError> {
+    let spec = scenario.beam_spec()?;
+    let beam = BeamModel::new(spec).map_err(crate::arm::ArmError::from)?;
+    let options = ArmOptions { damping_ratios: vec![0.0], ..scenario.arm_options() };
+    Ok(ArmModel::new(beam, fidelity, options)?)
+}
+
+/// Whether `integrator` at `step_s` keeps the undamped arm's vibration bounded (module doc).
+pub fn arm_is_stable(arm: &ArmModel, integrator: IntegratorKind, step_s: f64) -> bool {
+    let omega = arm.highest_omega_rad_s.max(1e-9);
+    let steps = ((400.0 * std::f64::consts::TAU / (omega * step_s)).ceil() as usize).clamp(200, 60_000);
+    let Ok(q0) = arm.static_deflection(0.0) else { return false };
+    let qd0 = every_mode_moving(arm);
+    let given_j = 0.5 * qd0.dot(&(&arm.mass * &qd0));
+    let drive = HubDrive::Prescribed(MotionProfile::hold(0.0));
+    let Ok(mut sim) = ArmSimulation::with_initial(arm.clone(), drive, integrator, q0, qd0) else { return false };
+    // The energy of the arm at rest in its static sag: what the vibration is measured from.
+    let rest = sim.sample().energies.total_j() - given_j;
+    let (mut first_half, mut second_half) = (0.0_f64, 0.0_f64);
+    for i in 0..steps {
+        if sim.step(step_s).is_err() {
+            return false;
+        }
+        let vibration = sim.sample().energies.total_j() - rest;
+        if !vibration.is_finite() {
+            return false;
+        }
+        if i < steps / 2 {
+            first_half = first_half.max(vibration);
+        } else {
+            second_half = second_half.max(vibration);
+        }
+    }
+    second_half <= 2.0 * first_half
+}
+
+/// A velocity with every mode of the arm moving (modal coordinates of unit amplitude).
+fn every_mode_moving(arm: &ArmModel) -> DVector<f64> {
+    match arm.fidelity {
+        Fidelity::Fe => {
+            arm.beam.modes().map(|m| &m.shapes * DVector::repeat(m.shapes.ncols(), 1.0)).unwrap_or_default()
+        }
+        _ => DVector::repeat(arm.elastic_dofs(), 1.0),
+    }
+}
+
+/// Bisects (in log step) for the largest step at which `stable` holds, between `lo` and `hi`, s.
+pub fn bisect(lo: f64, hi: f64, iterations: usize, mut stable: impl FnMut(f64) -> bool) -> Limit {
+    if stable(hi) {
+        return Limit::Unconditional(hi);
+    }
+    if !stable(lo) {
+        return Limit::Never(lo);
+    }
+    let (mut lo, mut hi) = (lo, hi);
+    for _ in 0..iterations {
+        if hi / lo < 1.0005 {
+            break;
+        }
+        let mid = (lo * hi).sqrt();
+        if stable(mid) { lo = mid } else { hi = mid }
+    }
+    Limit::Step(lo)
+}
+
+/// Largest stable step of `integrator` on `arm`.
+pub fn arm_limit(arm: &ArmModel, integrator: IntegratorKind) -> Limit {
+    let omega = arm.highest_omega_rad_s.max(1e-9);
+    let (lo, hi) = (FLOOR_OMEGA_DT / omega, (CAP_OMEGA_DT / omega).min(1.0));
+    bisect(lo, hi, 40, |h| arm_is_stable(arm, integrator, h))
+}
+
+/// Largest step at which a scene run finishes without the divergence guard stopping it.
+pub fn scene_limit(
+    scenario: &Scenario,
+    fidelity: Fidelity,
+    lo: f64,
+    hi: f64,
+    iterations: usize,
+) -> Result<Limit, SceneError> {
+    let mut error = None;
+    let limit = bisect(lo, hi, iterations, |h| {
+        let mut s = scenario.clone();
+        s.spec.time.step_s = h;
+        match run_with(&s, &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() }) {
+            Ok(_) => true,
+            Err(SceneError::Diverged { .. }) => false,
+            Err(e) => {
+                error.get_or_insert(e);
+                false
+            }
+        }
+    });
+    match error {
+        Some(e) => Err(e),
+        None => Ok(limit),
+    }
+}
+
+/// The stability map of a scene.
+pub fn map(
+    scenario: &Scenario,
+    auto: Fidelity,
+    reference: &Reference,
+    linear: &[ForceLaw],
+    quick: bool,
+) -> Result<StabilityMap, SceneError> {
+    let mut arm = Vec::new();
+    let fidelities = if quick {
+        vec![auto]
+    } else {
+        vec![Fidelity::Modal { modes: 1 }, auto, Fidelity::Modal { modes: 8 }, Fidelity::Fe]
+    };
+    let mut integrators = super::integrators().to_vec();
+    integrators.insert(2, IntegratorKind::Newmark { beta: 1.0 / 6.0, gamma: 0.5 });
+    for fidelity in dedup(fidelities) {
+        let model = undamped_arm(scenario, fidelity)?;
+        let name = match fidelity {
+            Fidelity::Fe => format!("fe{}", scenario.robot.arm.elements),
+            f => f.to_string(),
+        };
+        for &integrator in &integrators {
+            arm.push(ArmRow {
+                integrator,
+                model: name.clone(),
+                omega_max_rad_s: model.highest_omega_rad_s,
+                theory_omega_dt: integrator.stability_limit_omega_dt(),
+                measured: arm_limit(&model, integrator),
+            });
+        }
+    }
+    let scene = Scene::with_fidelity(scenario, auto)?;
+    let masses = scene.pad_effective_masses_kg();
+    let contact: Vec<ContactRow> = scenario
+        .spec
+        .dampeners
+        .iter()
+        .zip(masses)
+        .zip(linear)
+        .filter_map(|((pad, m), linear)| {
+            let m = m?;
+            let k = pad.law.tangent_stiffness_at_force(reference.peak_force_n);
+            Some(ContactRow {
+                pad: pad.name.clone(),
+                effective_mass_kg: m,
+                stiffness_n_m: k,
+                penalty_limit_s: 2.0 * (m / k).sqrt(),
+                pad_spring_limit_s: pad_spring_limit_s(linear, scenario.spec.contact.pad_mass_kg),
+            })
+        })
+        .collect();
+    let h0 = scenario.spec.time.step_s;
+    let mut rows = Vec::new();
+    if !contact.is_empty() {
+        let mut explicit = scenario.clone();
+        explicit.spec.integrator = IntegratorKind::SymplecticEuler;
+        let arm_limit_s = 2.0 / scene.arm.arm.highest_omega_rad_s.max(1e-9);
+        let penalty = contact.iter().map(|c| c.penalty_limit_s).fold(f64::INFINITY, f64::min);
+        let predicted = penalty.min(arm_limit_s);
+        let (lo, hi) = (predicted / 4.0, (4.0 * h0).max(2.0 * predicted));
+        rows.push(SceneRow {
+            what: format!("symplectic-euler, compliant pads, {auto}"),
+            measured: scene_limit(&explicit, auto, lo, hi, if quick { 4 } else { 8 })?,
+            predicted_s: Some(predicted),
+        });
+    }
+    let clamp = clamp_sweep(scenario, auto, quick)?;
+    Ok(StabilityMap { arm, contact, scene: rows, clamp })
+}
+
+/// The friction clamp with the 121 kg and 200 kg strings over a range of steps, at the bench's
+/// auto model and at eight modes: whether each run holds, and its slip.
+fn clamp_sweep(scenario: &Scenario, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
+    if !matches!(scenario.spec.payload, PayloadSpec::String { .. }) {
+        return Ok(Vec::new());
+    }
+    let h0 = scenario.spec.time.step_s;
+    let factors: &[f64] = if quick { &[0.5, 1.0, 2.0] } else { &[0.125, 0.25, 0.5, 1.0, 2.0, 4.0] };
+    let models = if quick { vec![auto] } else { dedup(vec![auto, Fidelity::Modal { modes: 8 }]) };
+    let mut out = Vec::new();
+    for size in ["2-7/8", "4-1/2"] {
+        let mut s = scenario.clone();
+        if let PayloadSpec::String { string, clamp, .. } = &mut s.spec.payload {
+            *string = StringSpec { size: size.into(), length_m: None };
+            *clamp = Clamp::Friction;
+        }
+        let string_kg = s.pipe_string()?.map_or(0.0, |p| p.mass_kg());
+        for &model in &models {
+            for &f in factors {
+                s.spec.time.step_s = f * h0;
+                let outcome = match run_with(&s, &RunOptions { fidelity: Some(model), ..RunOptions::default() }) {
+                    Ok((summary, _)) => ClampOutcome::Held {
+                        max_slip_m: summary.string_slip.map_or(0.0, |g| g.max_slip_m),
+                        peak_force_n: super::peak_force_n(&summary),
+                    },
+                    Err(SceneError::Diverged { t_s, .. }) => ClampOutcome::Diverged { t_s },
+                    Err(e) => return Err(e),
+                };
+                out.push(ClampRun { size: size.into(), string_kg, model, step_s: f * h0, outcome });
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// One run of the friction clamp sweep.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClampRun {
+    /// String size.
+    pub size: String,
+    /// Its mass, kg.
+    pub string_kg: f64,
+    /// Arm model.
+    pub model: Fidelity,
+    /// Step, s.
+    pub step_s: f64,
+    /// What happened.
+    pub outcome: ClampOutcome,
+}
+
+/// How a friction clamp run ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ClampOutcome {
+    /// It ran to the end.
+    Held {
+        /// Largest slip, m.
+        max_slip_m: f64,
+        /// Peak contact force, N.
+        peak_force_n: f64,
+    },
+    /// The guard stopped it.
+    Diverged {
+        /// When, s.
+        t_s: f64,
+    },
+}
+
+/// The explicit (symplectic Euler) limit of a mass `mass_kg` on a linear spring–damper, s:
+/// the Jury conditions on λ² − (2 − 2ζωh − ω²h²)λ + (1 − 2ζωh) give ωh < 2(√(1 + ζ²) − ζ).
+pub fn pad_spring_limit_s(law: &ForceLaw, mass_kg: f64) -> f64 {
+    let ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: c } = *law else { return f64::NAN };
+    let omega = (k / mass_kg).sqrt();
+    let zeta = c / (2.0 * (k * mass_kg).sqrt());
+    2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta)
+}
+
+fn dedup(mut v: Vec<Fidelity>) -> Vec<Fidelity> {
+    let mut seen = Vec::new();
+    v.retain(|f| {
+        let new = !seen.contains(f);
+        seen.push(*f);
+        new
+    });
+    v
+}

@@ -1,0 +1,129 @@
+//! Where methods fail, each beside its remedy (issue "Speed against accuracy"; the numbers are in
+//! docs/accuracy.md). The single-mode limits of each integrator are in tests/integrators.rs and
+//! the spin-up without geometric stiffening in tests/rotating_beam.rs; these are the arm's and
+//! the scene's.
+
+mod common;
+
+use std::path::Path;
+
+use common::rel;
+use pipearm::arm::Fidelity;
+use pipearm::bench::stability::{FLOOR_OMEGA_DT, Limit, arm_is_stable, arm_limit, undamped_arm};
+use pipearm::contact::ForceLaw;
+use pipearm::integrate::IntegratorKind;
+use pipearm::run::run;
+use pipearm::scenario::{Clamp, PayloadSpec, Scenario};
+use pipearm::scene::SceneError;
+
+fn scenario(name: &str) -> Scenario {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap()
+}
+
+#[test]
+fn explicit_euler_grows_on_the_arm_at_any_step_and_generalized_alpha_does_not() {
+    let arm = undamped_arm(&scenario("default"), Fidelity::Modal { modes: 3 }).unwrap();
+    let w = arm.highest_omega_rad_s;
+    for omega_dt in [FLOOR_OMEGA_DT, 0.2, 1.0] {
+        assert!(
+            !arm_is_stable(&arm, IntegratorKind::ExplicitEuler, omega_dt / w),
+            "explicit Euler at ω·dt = {omega_dt}"
+        );
+        assert!(arm_is_stable(&arm, IntegratorKind::default(), omega_dt / w), "generalized-α at ω·dt = {omega_dt}");
+    }
+    assert!(matches!(arm_limit(&arm, IntegratorKind::ExplicitEuler), Limit::Never(_)));
+}
+
+#[test]
+fn symplectic_euler_and_rk4_fail_on_the_arm_past_their_limits_on_its_highest_mode() {
+    let arm = undamped_arm(&scenario("default"), Fidelity::Modal { modes: 3 }).unwrap();
+    let w = arm.highest_omega_rad_s;
+    for (integrator, theory) in [(IntegratorKind::SymplecticEuler, 2.0), (IntegratorKind::Rk4, 8f64.sqrt())] {
+        let Limit::Step(h) = arm_limit(&arm, integrator) else { panic!("{integrator:?}: no finite limit") };
+        println!("{}: measured ω·dt = {:.5} (theory {theory:.5})", integrator.name(), h * w);
+        assert!(rel(h * w, theory) < 0.01, "{}: ω·dt {} vs {theory}", integrator.name(), h * w);
+        // The remedy: an implicit integrator at twice that step.
+        assert!(arm_is_stable(&arm, IntegratorKind::default(), 2.0 * h));
+    }
+    // The highest mode sets the limit: eight modes halve... a sixth of the step.
+    let eight = undamped_arm(&scenario("default"), Fidelity::Modal { modes: 8 }).unwrap();
+    let Limit::Step(h8) = arm_limit(&eight, IntegratorKind::SymplecticEuler) else { panic!("no limit") };
+    assert!(rel(h8 * eight.highest_omega_rad_s, 2.0) < 0.01);
+}
+
+#[test]
+fn a_coarse_step_misses_the_peak_under_the_stiffest_dampener() {
+    let mut s = scenario("default");
+    s.spec.time.settle_s = 1.0;
+    // Ten times the shipped pad: impacts of about 10 ms.
+    s.spec.dampeners[0].law = ForceLaw::HuntCrossley { stiffness: 7.5e7, exponent: 1.0, restitution: 0.6 };
+    let peak = |step_s: f64| {
+        let mut v = s.clone();
+        v.spec.time.step_s = step_s;
+        let (summary, _) = run(&v, Some(Fidelity::Modal { modes: 3 })).unwrap();
+        let first = &summary.pairs[0].impacts[0];
+        (summary.pairs[0].peak_force_n, first.duration_s())
+    };
+    let (reference, contact_s) = peak(1.25e-4);
+    let (coarse, _) = peak(8e-3);
+    let (fine, _) = peak(contact_s / 20.0);
+    println!(
+        "peak {reference:.1} N (contact {:.1} ms); 8 ms step {coarse:.1} N; contact/20 {fine:.1} N",
+        1e3 * contact_s
+    );
+    assert!(rel(coarse, reference) > 0.1, "an 8 ms step should miss a {contact_s} s impact's peak");
+    // The remedy: twenty steps across the impact.
+    assert!(rel(fine, reference) < 0.03, "contact/20: {fine} vs {reference}");
+}
+
+#[test]
+fn the_friction_clamps_staggered_coupling_diverges_on_the_fe_arm_and_holds_on_modes() {
+    let mut s = scenario("default");
+    if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
+        *clamp = Clamp::Friction;
+    }
+    s.spec.drive = pipearm::scenario::DriveSpec::Trapezoidal {
+        start_deg: 0.0,
+        end_deg: 90.0,
+        duration_s: 15.0,
+        accel_deg_s2: None,
+        ramp_fraction: Some(0.2),
+    };
+    s.spec.time.settle_s = 0.0;
+    match run(&s, Some(Fidelity::Fe)) {
+        Err(SceneError::Diverged { t_s, what, advice }) => {
+            println!("fe: diverged at {t_s} s: {what}; {advice}");
+            assert!(advice.contains("modal"), "the advice names the remedy: {advice}");
+        }
+        other => panic!("the friction clamp on the fe arm should diverge, got {:?}", other.map(|r| r.0.pairs)),
+    }
+    let (summary, _) = run(&s, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    let slip = summary.string_slip.unwrap();
+    println!("modal(3): max slip {:.3} mm", 1e3 * slip.max_slip_m);
+    assert!(slip.max_slip_m < 0.01, "on modes the clamp holds: {} m", slip.max_slip_m);
+}
+
+#[test]
+fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
+    let mut s = scenario("default");
+    s.spec.time.settle_s = 0.0;
+    s.spec.integrator = IntegratorKind::SymplecticEuler;
+    let eight = Some(Fidelity::Modal { modes: 8 });
+    let Err(SceneError::Diverged { t_s, what, advice }) = run(&s, eight) else { panic!("ω·dt = 4.6 must diverge") };
+    println!("diverged at {t_s} s: {what}\nadvice: {advice}");
+    assert!(t_s < 1.0, "caught within the first second, not at the end: {t_s}");
+    assert!(what.contains("energy") || what.contains("finite"));
+    let advised: f64 = advice
+        .split("step_s <= ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no step in the advice: {advice}"));
+    s.spec.time.step_s = advised;
+    s.spec.drive = pipearm::scenario::DriveSpec::Hold { angle_deg: 0.0 };
+    s.spec.time.settle_s = 2.0;
+    run(&s, eight).expect("the advised step is stable");
+    s.spec.integrator = IntegratorKind::ExplicitEuler;
+    let Err(SceneError::Diverged { advice, .. }) = run(&s, eight) else { panic!("explicit Euler must diverge") };
+    assert!(advice.contains("generalized-alpha"), "{advice}");
+}
