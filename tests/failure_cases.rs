@@ -82,13 +82,6 @@ fn the_friction_clamps_staggered_coupling_diverges_on_the_fe_arm_and_holds_on_mo
     if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
         *clamp = Clamp::Friction;
     }
-    s.spec.drive = pipearm::scenario::DriveSpec::Trapezoidal {
-        start_deg: 0.0,
-        end_deg: 90.0,
-        duration_s: 15.0,
-        accel_deg_s2: None,
-        ramp_fraction: Some(0.2),
-    };
     s.spec.time.settle_s = 0.0;
     match run(&s, Some(Fidelity::Fe)) {
         Err(SceneError::Diverged { t_s, what, advice }) => {
@@ -122,7 +115,9 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
     s.spec.time.step_s = advised;
     s.spec.drive = pipearm::scenario::DriveSpec::Hold { angle_deg: 0.0 };
     s.spec.time.settle_s = 2.0;
+    let s = Scenario::from_spec(&s.path, s.spec).unwrap();
     run(&s, eight).expect("the advised step is stable");
+    let mut s = s;
     s.spec.integrator = IntegratorKind::ExplicitEuler;
     let Err(SceneError::Diverged { advice, .. }) = run(&s, eight) else { panic!("explicit Euler must diverge") };
     assert!(advice.contains("generalized-alpha"), "{advice}");

@@ -147,3 +147,15 @@ fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values.fold((f64::INFINITY, 0.0_f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
     if lo.is_finite() && hi > 0.0 { (lo.max(1e-12), hi.max(lo * 10.0)) } else { (1e-6, 1.0) }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::pareto_front;
+
+    #[test]
+    fn the_pareto_front_keeps_exactly_the_undominated_points() {
+        // (cost, error): 1 and 3 are dominated by 0 and 2; 4 is cheapest-but-worst and stays.
+        let points = [(2.0, 0.1), (3.0, 0.2), (5.0, 0.01), (6.0, 0.05), (1.0, 0.5), (f64::NAN, 0.0)];
+        assert_eq!(pareto_front(&points), vec![4, 0, 2]);
+    }
+}

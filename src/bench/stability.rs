@@ -350,3 +350,41 @@ fn dedup(mut v: Vec<Fidelity>) -> Vec<Fidelity> {
     });
     v
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Symplectic Euler on m ẍ = −k x − c ẋ (rapier's explicit force), |x| after many steps.
+    fn amplitude_after(law: &ForceLaw, mass_kg: f64, h: f64) -> f64 {
+        let ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: c } = *law else { unreachable!() };
+        let (mut x, mut v) = (1.0_f64, 0.0_f64);
+        for _ in 0..20_000 {
+            v += h * (-k * x - c * v) / mass_kg;
+            x += h * v;
+        }
+        let amplitude = x.abs().max(v.abs() * h);
+        if amplitude.is_finite() { amplitude } else { f64::INFINITY }
+    }
+
+    #[test]
+    fn the_pad_body_limit_is_where_symplectic_euler_on_a_damped_spring_turns_unstable() {
+        for c in [0.0, 2.0e3, 2.4e4] {
+            let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: c };
+            let limit = pad_spring_limit_s(&law, 1.0);
+            assert!(amplitude_after(&law, 1.0, 0.99 * limit) < 10.0, "c = {c}: unstable below {limit}");
+            assert!(amplitude_after(&law, 1.0, 1.01 * limit) > 1e3, "c = {c}: stable above {limit}");
+        }
+        // Undamped, it is the textbook 2/ω.
+        let undamped = pad_spring_limit_s(&ForceLaw::Linear { stiffness_n_m: 4.0, damping_n_s_m: 0.0 }, 1.0);
+        assert!((undamped - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bisection_finds_a_known_threshold() {
+        let Limit::Step(h) = bisect(1e-3, 1.0, 60, |h| h <= 0.0123) else { panic!("no threshold") };
+        assert!((h / 0.0123 - 1.0).abs() < 1e-3 && h <= 0.0123);
+        assert_eq!(bisect(1e-3, 1.0, 60, |_| true), Limit::Unconditional(1.0));
+        assert_eq!(bisect(1e-3, 1.0, 60, |_| false), Limit::Never(1e-3));
+    }
+}
