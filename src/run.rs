@@ -111,8 +111,10 @@ pub struct RunSummary {
     pub integrator: String,
     /// Contact method.
     pub contact_method: String,
-    /// Time step, s.
+    /// Time step around contact, s.
     pub step_s: f64,
+    /// Time step in free motion, s (the same as `step_s` unless the scenario sets `free_step_s`).
+    pub free_step_s: f64,
     /// Steps taken.
     pub steps: usize,
     /// Simulated time, s.
@@ -162,9 +164,10 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let fidelity = choice.fidelity;
     let mut scene = Scene::with_fidelity(scenario, fidelity)?;
     let h = scenario.spec.time.step_s;
+    let free_h = scenario.spec.time.free_step_s.unwrap_or(h);
     let end = scenario.duration_s();
-    let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize;
-    let mut series = Series { pad_force_n: vec![Vec::with_capacity(steps + 1); scene.pads.len()], ..Series::default() };
+    let capacity = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
+    let mut series = Series { pad_force_n: vec![Vec::with_capacity(capacity); scene.pads.len()], ..Series::default() };
     let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
     if options.capture_frames {
         series.layout = Some(scene.layout());
@@ -182,8 +185,15 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let string_length_m = scenario.pipe_string()?.map_or(f64::INFINITY, |s| s.length_m);
     record(&scene, &first, &mut series, &mut trackers);
     keeper.keep(&scene, &mut series, options.capture_frames, false);
-    for i in 0..steps {
-        let step = h.min(end - i as f64 * h);
+    let mut steps = 0;
+    // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
+    // be a step too short to take.
+    let sliver = 1e-6 * h;
+    while end - scene.arm.time_s() > sliver {
+        let remaining = end - scene.arm.time_s();
+        let wanted = if free_h > h && scene.free_step_allowed(free_h) { free_h } else { h };
+        let step = if remaining <= wanted + sliver { remaining } else { wanted };
+        steps += 1;
         scene.step(step).map_err(|e| diverged_step(scenario, &scene, e))?;
         let sample = scene.arm.sample();
         guard.check(&sample, &watched(&scene)).map_err(|d| divergence_error(scenario, &scene, d))?;
@@ -202,7 +212,7 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
             return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
         }
         record(&scene, &sample, &mut series, &mut trackers);
-        keeper.keep(&scene, &mut series, options.capture_frames, i + 1 == steps);
+        keeper.keep(&scene, &mut series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
@@ -381,6 +391,7 @@ fn summarize(
         integrator: format!("{:?}", scenario.spec.integrator),
         contact_method: format!("{:?}", scenario.spec.contact.method).to_lowercase(),
         step_s: scenario.spec.time.step_s,
+        free_step_s: scenario.spec.time.free_step_s.unwrap_or(scenario.spec.time.step_s),
         steps,
         simulated_s: series.t_s.last().copied().unwrap_or(0.0),
         wall_time_s,

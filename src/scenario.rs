@@ -265,8 +265,14 @@ pub enum DriveSpec {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSpec {
-    /// Fixed step, s.
+    /// Step around contact (and everywhere without `free_step_s`), s.
     pub step_s: f64,
+    /// Step while no pad is within reach of the arm, s (default `step_s`). The scene predicts the
+    /// approach from each pad's clearance and the arm's speed and falls back to `step_s` before
+    /// a contact can begin; `compliant` contact with a rigid clamp only (the `rapier` pad body
+    /// and the friction clamp keep `step_s`).
+    #[serde(default)]
+    pub free_step_s: Option<f64>,
     /// Time simulated after the drive ends, s.
     pub settle_s: f64,
 }
@@ -325,6 +331,14 @@ impl Scenario {
         let t = spec.time;
         if !(t.step_s.is_finite() && t.step_s > 0.0 && t.step_s <= 0.1) {
             return Err(self.invalid("time.step_s", format!("{} is outside 0 < step_s <= 0.1", t.step_s)));
+        }
+        if let Some(free) = t.free_step_s
+            && !(free.is_finite() && free >= t.step_s && free <= 0.1)
+        {
+            return Err(self.invalid(
+                "time.free_step_s",
+                format!("{free} is outside step_s ({}) <= free_step_s <= 0.1", t.step_s),
+            ));
         }
         if !(t.settle_s.is_finite() && (0.0..=3600.0).contains(&t.settle_s)) {
             return Err(self.invalid("time.settle_s", format!("{} is outside 0 <= settle_s <= 3600", t.settle_s)));

@@ -1,11 +1,14 @@
 //! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
-//! contact force and peak tip deflection, and no cheaper fidelity is.
+//! contact force and peak tip deflection, and no cheaper fidelity is. (A friction-clamped string
+//! is referenced on eight modes: the clamp's staggered coupling diverges on the FE arm,
+//! docs/accuracy.md.)
 
 use std::path::{Path, PathBuf};
 
 use pipearm::arm::Fidelity;
 use pipearm::run::{RunSummary, run};
 use pipearm::scenario::{DriveSpec, Scenario};
+use pipearm::scene::SceneError;
 
 fn shipped() -> Vec<PathBuf> {
     pipearm::scenario::scenario_files(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios")).unwrap()
@@ -26,7 +29,8 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
     for path in shipped() {
         let s = Scenario::load(&path).unwrap();
         let chosen = s.fidelity().unwrap().fidelity;
-        let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
+        let reference = if s.friction_clamp().is_some() { Fidelity::Modal { modes: 8 } } else { Fidelity::Fe };
+        let (fe, _) = run(&s, Some(reference)).unwrap();
         let (auto, _) = run(&s, Some(chosen)).unwrap();
         let name = &s.spec.name;
         println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));
@@ -39,9 +43,16 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
             Fidelity::Fe => panic!("auto never picks fe"),
         };
         for fidelity in cheaper {
-            let (summary, _) = run(&s, Some(fidelity)).unwrap();
-            println!("  {fidelity}: {:.3} % from fe", 100.0 * off(&summary, &fe));
-            assert!(off(&summary, &fe) > 0.02, "{name}: the cheaper {fidelity} is within 2 % too");
+            // A cheaper model whose run diverges (the friction clamp on one mode) is not within
+            // 2 % either.
+            match run(&s, Some(fidelity)) {
+                Ok((summary, _)) => {
+                    println!("  {fidelity}: {:.3} % from fe", 100.0 * off(&summary, &fe));
+                    assert!(off(&summary, &fe) > 0.02, "{name}: the cheaper {fidelity} is within 2 % too");
+                }
+                Err(SceneError::Diverged { t_s, what, .. }) => println!("  {fidelity}: diverged at {t_s} s: {what}"),
+                Err(e) => panic!("{name}: {fidelity}: {e}"),
+            }
         }
     }
 }

@@ -1,6 +1,6 @@
 //! The arm's equations of motion as a [`Dynamics`] system.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, DVectorViewMut};
 
 use super::{ArmContact, ArmModel, Energies};
 use crate::drive::{DriveState, MotionProfile};
@@ -68,21 +68,26 @@ impl ArmSystem<'_> {
         }
     }
 
-    /// Elastic generalized forces without the θ̈ term:
+    /// Adds the elastic generalized forces without the θ̈ term to `f` (allocation-free: it runs
+    /// several times a step):
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
-    fn elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> DVector<f64> {
+    fn add_elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, f: &mut DVectorViewMut<f64>) {
         let a = self.arm;
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, c) = hub.angle_rad.sin_cos();
-        let stiff = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
-        let mut f = -(&a.damping * qd) - 2.0 * w * (&a.gyroscopic * qd) - stiff * q;
-        f += w * w * &a.axial_moment - g * s * &a.axial_mass - g * c * &a.transverse_mass;
-        f += &self.load.modal;
-        for c in self.contacts {
-            let state = c.state(hub, q, qd);
-            f += state.force_n * &state.direction;
+        f.gemv(-1.0, &a.damping, qd, 1.0);
+        f.gemv(-2.0 * w, &a.gyroscopic, qd, 1.0);
+        f.gemv(-1.0, &a.stiffness, q, 1.0);
+        f.gemv(w * w, &a.spin_mass, q, 1.0);
+        f.gemv(s, &a.gravity_stiffness, q, 1.0);
+        f.axpy(w * w, &a.axial_moment, 1.0);
+        f.axpy(-g * s, &a.axial_mass, 1.0);
+        f.axpy(-g * c, &a.transverse_mass, 1.0);
+        f.axpy(1.0, &self.load.modal, 1.0);
+        for contact in self.contacts {
+            let state = contact.state(hub, q, qd);
+            f.axpy(state.force_n, &state.direction, 1.0);
         }
-        f
     }
 
     /// Hub generalized force without inertia: τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment.
@@ -90,7 +95,7 @@ impl ArmSystem<'_> {
         let a = self.arm;
         let g = a.options.gravity_m_s2;
         let (s, c) = hub.angle_rad.sin_cos();
-        let spin = 2.0 * hub.rate_rad_s * (&a.axial_moment + &a.spin_mass * q).dot(qd);
+        let spin = 2.0 * hub.rate_rad_s * (a.axial_moment.dot(qd) + bilinear(&a.spin_mass, qd, q));
         let contact: f64 = self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum();
         applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
     }
@@ -99,14 +104,14 @@ impl ArmSystem<'_> {
     fn gravity_moment(&self, s: f64, c: f64, q: &DVector<f64>, g: f64) -> f64 {
         let a = self.arm;
         // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
-        let foreshortening = 0.5 * c * q.dot(&(&a.gravity_stiffness * q));
+        let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
         -g * c * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * s * a.transverse_mass.dot(q) + foreshortening
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
     fn pivot_inertia(&self, q: &DVector<f64>) -> f64 {
         let a = self.arm;
-        a.pivot_inertia_kg_m2 + 2.0 * a.axial_moment.dot(q) + q.dot(&(&a.spin_mass * q))
+        a.pivot_inertia_kg_m2 + 2.0 * a.axial_moment.dot(q) + bilinear(&a.spin_mass, q, q)
     }
 
     /// S̃ = S + C q.
@@ -114,17 +119,22 @@ impl ArmSystem<'_> {
         &self.arm.coupling + &self.arm.gyroscopic * q
     }
 
+    /// S̃ · y = S·y + (C q)·y, without forming S̃.
+    fn coupling_dot(&self, q: &DVector<f64>, y: &DVector<f64>) -> f64 {
+        self.arm.coupling.dot(y) + bilinear(&self.arm.gyroscopic, y, q)
+    }
+
     /// Kinetic, strain and gravity energy at (hub, q, q̇), J.
     pub fn energies(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> Energies {
         let a = self.arm;
         let w = hub.rate_rad_s;
         let kinetic_j =
-            0.5 * w * w * self.pivot_inertia(q) + w * self.coupling(q).dot(qd) + 0.5 * qd.dot(&(&a.mass * qd));
+            0.5 * w * w * self.pivot_inertia(q) + w * self.coupling_dot(q, qd) + 0.5 * bilinear(&a.mass, qd, qd);
         let (s, c) = hub.angle_rad.sin_cos();
         let g = a.options.gravity_m_s2;
         let gravity_j = g * s * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * c * a.transverse_mass.dot(q)
-            - 0.5 * s * q.dot(&(&a.gravity_stiffness * q));
-        Energies { kinetic_j, strain_j: 0.5 * q.dot(&(&a.stiffness * q)), gravity_j }
+            - 0.5 * s * bilinear(&a.gravity_stiffness, q, q);
+        Energies { kinetic_j, strain_j: 0.5 * bilinear(&a.stiffness, q, q), gravity_j }
     }
 
     /// Torque the drive applies to realize the hub motion, given q̈, N·m.
@@ -132,7 +142,7 @@ impl ArmSystem<'_> {
         match self.drive {
             HubDrive::Free { torque_n_m } => *torque_n_m,
             HubDrive::Prescribed(_) => {
-                let inertia = self.pivot_inertia(q) * hub.accel_rad_s2 + self.coupling(q).dot(qdd);
+                let inertia = self.pivot_inertia(q) * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
                 inertia - self.hub_force(hub, q, qd, 0.0)
             }
         }
@@ -163,15 +173,33 @@ impl Dynamics for ArmSystem<'_> {
     }
 
     fn forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
-        let (hub, q, qd) = self.split(t, x, v);
         match self.drive {
-            HubDrive::Prescribed(_) => {
-                f.copy_from(&(self.elastic_forces(&hub, &q, &qd) - hub.accel_rad_s2 * self.coupling(&q)));
+            HubDrive::Prescribed(profile) => {
+                // q = x, q̇ = v: no split, no copies.
+                let hub = profile.sample(t);
+                // −θ̈ S̃ = −θ̈ (S + C q).
+                f.copy_from(&self.arm.coupling);
+                f.gemv(1.0, &self.arm.gyroscopic, x, 1.0);
+                *f *= -hub.accel_rad_s2;
+                self.add_elastic_forces(&hub, x, v, &mut f.rows_mut(0, x.len()));
             }
             HubDrive::Free { torque_n_m } => {
+                let (hub, q, qd) = self.split(t, x, v);
                 f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
-                f.rows_mut(1, q.len()).copy_from(&self.elastic_forces(&hub, &q, &qd));
+                let mut elastic = f.rows_mut(1, q.len());
+                elastic.fill(0.0);
+                self.add_elastic_forces(&hub, &q, &qd, &mut elastic);
             }
+        }
+    }
+
+    fn solve_mass(&self, _t: f64, _x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) -> bool {
+        match self.drive {
+            HubDrive::Prescribed(_) => {
+                out.gemv(1.0, &self.arm.mass_inverse, rhs, 0.0);
+                true
+            }
+            HubDrive::Free { .. } => false,
         }
     }
 
@@ -179,6 +207,24 @@ impl Dynamics for ArmSystem<'_> {
     /// out (a quasi-Newton iteration that converges in a few steps).
     fn tangents(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         let a = self.arm;
+        if let HubDrive::Prescribed(profile) = self.drive {
+            // In place: this runs at every Newton iteration.
+            let hub = profile.sample(t);
+            let (w, s) = (hub.rate_rad_s, hub.angle_rad.sin());
+            k.copy_from(&a.stiffness);
+            k.zip_apply(&a.spin_mass, |kij, wij| *kij -= w * w * wij);
+            k.zip_apply(&a.gravity_stiffness, |kij, gij| *kij -= s * gij);
+            k.zip_apply(&a.gyroscopic, |kij, cij| *kij += hub.accel_rad_s2 * cij);
+            c.copy_from(&a.damping);
+            c.zip_apply(&a.gyroscopic, |cij, gij| *cij += 2.0 * w * gij);
+            for contact in self.contacts {
+                let state = contact.state(&hub, x, v);
+                let (k_c, c_c) = contact.stiffness_damping(&state);
+                k.ger(k_c, &state.direction, &state.direction, 1.0);
+                c.ger(c_c, &state.direction, &state.direction, 1.0);
+            }
+            return;
+        }
         let (hub, q, qd) = self.split(t, x, v);
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, co) = hub.angle_rad.sin_cos();
@@ -192,11 +238,6 @@ impl Dynamics for ArmSystem<'_> {
                 k_qq += k_c * &ww;
                 c_qq += c_c * ww;
             }
-        }
-        if let HubDrive::Prescribed(_) = self.drive {
-            k.copy_from(&(k_qq + hub.accel_rad_s2 * &a.gyroscopic));
-            c.copy_from(&c_qq);
-            return;
         }
         let n = q.len();
         let spin_arm = &a.axial_moment + &a.spin_mass * &q;
@@ -218,4 +259,14 @@ impl Dynamics for ArmSystem<'_> {
     fn is_linear(&self) -> bool {
         matches!(self.drive, HubDrive::Prescribed(_)) && self.contacts.is_empty()
     }
+}
+
+/// xᵀ A y without a temporary (these run every step on small matrices, where allocating the
+/// product costs more than forming it).
+fn bilinear(a: &DMatrix<f64>, x: &DVector<f64>, y: &DVector<f64>) -> f64 {
+    let mut sum = 0.0;
+    for (j, yj) in y.iter().enumerate() {
+        sum += yj * a.column(j).dot(x);
+    }
+    sum
 }

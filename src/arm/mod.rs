@@ -137,6 +137,8 @@ pub struct ArmModel {
     /// integrator's step.
     pub highest_omega_rad_s: f64,
     pub(crate) mass: DMatrix<f64>,
+    /// M⁻¹ (the mass is constant under a prescribed hub: factorised once, not every step).
+    pub(crate) mass_inverse: DMatrix<f64>,
     pub(crate) stiffness: DMatrix<f64>,
     pub(crate) damping: DMatrix<f64>,
     pub(crate) gyroscopic: DMatrix<f64>,
@@ -180,8 +182,16 @@ impl ArmModel {
         let g = options.gravity_m_s2;
         let l = beam.length_m();
         let tip_rows = beam.point_rows(l).map(|r| project_v(&r));
+        let mass = project(&beam.mass);
+        let mass_inverse = if mass.is_empty() { Some(mass.clone()) } else { mass.clone().try_inverse() };
+        let mass_inverse = mass_inverse.ok_or(ArmError::InvalidParameter {
+            name: "mass matrix".into(),
+            value: f64::NAN,
+            allowed: "a positive definite reduced mass".into(),
+        })?;
         Ok(ArmModel {
-            mass: project(&beam.mass),
+            mass,
+            mass_inverse,
             stiffness: project(&beam.stiffness),
             damping: project(&damping_full),
             gyroscopic: project(&beam.gyroscopic),

@@ -1,5 +1,7 @@
 //! Time-stepping the arm alone (no contact) and reading its outputs.
 
+use std::borrow::Cow;
+
 use nalgebra::DVector;
 
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
@@ -225,15 +227,20 @@ impl ArmSimulation {
     }
 
     /// Hub state and elastic coordinates q, q̇ at the current state, without the outputs
-    /// [`Self::sample`] computes (torque, energies): what the step loop needs.
-    pub fn kinematics(&self) -> (DriveState, DVector<f64>, DVector<f64>) {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+    /// [`Self::sample`] computes (torque, energies): what the step loop needs. Borrowed under a
+    /// prescribed hub (q and q̇ are the integrator's coordinates), copied under a free one.
+    pub fn kinematics(&self) -> (DriveState, Cow<'_, DVector<f64>>, Cow<'_, DVector<f64>>) {
         let s = &self.state;
-        let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
-        if let HubDrive::Free { .. } = self.drive {
-            hub.accel_rad_s2 = s.a[0];
+        match &self.drive {
+            HubDrive::Prescribed(profile) => (profile.sample(s.t), Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
+            HubDrive::Free { .. } => {
+                let system =
+                    ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+                let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
+                hub.accel_rad_s2 = s.a[0];
+                (hub, Cow::Owned(q), Cow::Owned(qd))
+            }
         }
-        (hub, q, qd)
     }
 
     /// Outputs at the current state.

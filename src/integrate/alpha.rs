@@ -27,6 +27,37 @@ pub struct GeneralizedAlpha {
     /// Newton iterations allowed per step.
     pub max_iterations: usize,
     pseudo_acceleration: Option<DVector<f64>>,
+    /// Buffers reused from step to step.
+    work: Option<Workspace>,
+}
+
+/// The Newton iteration's matrices and vectors, kept between steps (no allocation per iteration).
+#[derive(Debug, Clone)]
+struct Workspace {
+    m: DMatrix<f64>,
+    kt: DMatrix<f64>,
+    ct: DMatrix<f64>,
+    jacobian: DMatrix<f64>,
+    f: DVector<f64>,
+    a1: DVector<f64>,
+    x1: DVector<f64>,
+    v1: DVector<f64>,
+}
+
+impl Workspace {
+    fn new(n: usize) -> Self {
+        let (m, v) = (DMatrix::zeros(n, n), DVector::zeros(n));
+        Workspace {
+            kt: m.clone(),
+            ct: m.clone(),
+            jacobian: m.clone(),
+            m,
+            f: v.clone(),
+            a1: v.clone(),
+            x1: v.clone(),
+            v1: v,
+        }
+    }
 }
 
 impl GeneralizedAlpha {
@@ -40,6 +71,7 @@ impl GeneralizedAlpha {
             tolerance: 1e-10,
             max_iterations: 25,
             pseudo_acceleration: None,
+            work: None,
         }
     }
 
@@ -95,37 +127,48 @@ impl Integrator for GeneralizedAlpha {
         let t1 = s.t + h;
         let ratio = (1.0 - self.alpha_f) / (1.0 - self.alpha_m);
         // x_{n+1}, ẋ_{n+1} and a_{n+1} are affine in the unknown ẍ_{n+1}:
-        let pseudo_of =
-            |acc: &DVector<f64>| ratio * acc + (self.alpha_f * &s.a - self.alpha_m * &a_n) / (1.0 - self.alpha_m);
+        // a₁ = ratio ẍ + a_rest, x₁ = x_base + h²β a₁, ẋ₁ = v_base + hγ a₁.
+        let a_rest = (self.alpha_f * &s.a - self.alpha_m * &a_n) / (1.0 - self.alpha_m);
         let dx_dacc = h * h * self.beta * ratio;
         let dv_dacc = h * self.gamma * ratio;
         let x_base = &s.x + h * &s.v + h * h * (0.5 - self.beta) * &a_n;
         let v_base = &s.v + h * (1.0 - self.gamma) * &a_n;
 
+        let w = self.work.get_or_insert_with(|| Workspace::new(n));
+        if w.f.len() != n {
+            *w = Workspace::new(n);
+        }
         let mut acc = s.a.clone();
-        let (mut m, mut kt, mut ct) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n), DMatrix::zeros(n, n));
-        let mut f = DVector::zeros(n);
         let mut residual_norm = f64::INFINITY;
         for _ in 0..self.max_iterations {
-            let a1 = pseudo_of(&acc);
-            let x1 = &x_base + h * h * self.beta * &a1;
-            let v1 = &v_base + h * self.gamma * &a1;
-            sys.mass_matrix(t1, &x1, &mut m);
-            sys.forces(t1, &x1, &v1, &mut f);
-            let residual = &m * &acc - &f;
-            sys.tangents(t1, &x1, &v1, &mut kt, &mut ct);
-            let jacobian = &m + dv_dacc * &ct + dx_dacc * &kt;
-            let delta = jacobian.lu().solve(&residual).ok_or(IntegrateError::SingularMatrix { t: t1 })?;
+            // a₁, x₁, ẋ₁ at this iterate, in place.
+            w.a1.copy_from(&a_rest);
+            w.a1.axpy(ratio, &acc, 1.0);
+            w.x1.copy_from(&x_base);
+            w.x1.axpy(h * h * self.beta, &w.a1, 1.0);
+            w.v1.copy_from(&v_base);
+            w.v1.axpy(h * self.gamma, &w.a1, 1.0);
+            sys.mass_matrix(t1, &w.x1, &mut w.m);
+            sys.forces(t1, &w.x1, &w.v1, &mut w.f);
+            // residual = M ẍ − f, into f.
+            w.f.gemv(1.0, &w.m, &acc, -1.0);
+            sys.tangents(t1, &w.x1, &w.v1, &mut w.kt, &mut w.ct);
+            w.jacobian.copy_from(&w.m);
+            w.jacobian.zip_zip_apply(&w.ct, &w.kt, |j, c, k| *j += dv_dacc * c + dx_dacc * k);
+            let delta = w.jacobian.clone().lu().solve(&w.f).ok_or(IntegrateError::SingularMatrix { t: t1 })?;
             acc -= &delta;
             residual_norm = delta.norm();
             // Converged when the correction is small against the acceleration, or when what it
             // would still move the coordinates is (an arm at rest on a pad has ẍ ≈ 0).
             let small_acc = residual_norm <= self.tolerance * acc.norm();
-            let small_move = dx_dacc * residual_norm <= self.tolerance * x1.norm().max(1e-300);
+            let small_move = dx_dacc * residual_norm <= self.tolerance * w.x1.norm().max(1e-300);
             if sys.is_linear() || small_acc || small_move || residual_norm == 0.0 {
-                let a1 = pseudo_of(&acc);
-                s.x = &x_base + h * h * self.beta * &a1;
-                s.v = &v_base + h * self.gamma * &a1;
+                let mut a1 = a_rest;
+                a1.axpy(ratio, &acc, 1.0);
+                s.x = x_base;
+                s.x.axpy(h * h * self.beta, &a1, 1.0);
+                s.v = v_base;
+                s.v.axpy(h * self.gamma, &a1, 1.0);
                 s.a = acc;
                 s.t = t1;
                 self.pseudo_acceleration = Some(a1);

@@ -28,6 +28,11 @@ pub trait Dynamics {
     fn tangents(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         finite_difference_tangents(self, t, x, v, k, c);
     }
+    /// Solves M(t, x) `out` = `rhs` where the system knows a cheaper way than factorising M
+    /// (a constant M inverted once); `false` to let the caller factorise.
+    fn solve_mass(&self, _t: f64, _x: &DVector<f64>, _rhs: &DVector<f64>, _out: &mut DVector<f64>) -> bool {
+        false
+    }
     /// True when f is affine in (x, ẋ) and M is constant, so that one Newton iteration with the
     /// exact tangents solves an implicit step exactly.
     fn is_linear(&self) -> bool {
@@ -111,12 +116,17 @@ pub fn solve_acceleration<S: Dynamics + ?Sized>(
         *a = DVector::zeros(0);
         return Ok(());
     }
-    let mut m = DMatrix::zeros(n, n);
     let mut f = DVector::zeros(n);
-    sys.mass_matrix(t, x, &mut m);
     sys.forces(t, x, v, &mut f);
-    let lu = m.lu();
-    *a = lu.solve(&f).ok_or(IntegrateError::SingularMatrix { t })?;
+    if a.len() != n {
+        *a = DVector::zeros(n);
+    }
+    if sys.solve_mass(t, x, &f, a) {
+        return Ok(());
+    }
+    let mut m = DMatrix::zeros(n, n);
+    sys.mass_matrix(t, x, &mut m);
+    *a = m.lu().solve(&f).ok_or(IntegrateError::SingularMatrix { t })?;
     Ok(())
 }
 

@@ -39,6 +39,13 @@ pub struct ArmPiece {
 }
 
 impl ArmPiece {
+    /// Half extents of its box along the section's axes [along the arm, across it], m.
+    pub fn section_extents_m(&self) -> [f64; 2] {
+        let [hx, hy, hz] = self.half_extents_m;
+        let axes = [Vector::new(hx, 0.0, 0.0), Vector::new(0.0, hy, 0.0), Vector::new(0.0, 0.0, hz)];
+        axes.iter().map(|a| self.local_rotation * *a).fold([0.0, 0.0], |e, r| [e[0] + r.x.abs(), e[1] + r.y.abs()])
+    }
+
     fn new(
         name: &str,
         station_m: f64,

@@ -72,7 +72,7 @@ struct PadWatch {
     rows: crate::arm::StationRows,
     /// Body-frame y of the face that meets the pad, m.
     face_lateral_m: f64,
-    /// Extra clearance for shapes standing out beyond the face, plus 1 cm, m.
+    /// Extra clearance for shapes standing out beyond the face, plus 0.1 mm, m.
     margin_m: f64,
 }
 
@@ -275,22 +275,22 @@ impl Scene {
             .friction(0.0)
             .mass(scenario.spec.contact.pad_mass_kg);
         let collider = self.world.insert_collider(shape, Some(body));
-        // How far any shape riding on the arm near the pad stands out beyond the arm's face.
-        let reach_x = 0.5 * spec.length_m;
+        // How far any shape riding on the arm across the pad's length stands out beyond the arm's
+        // face on the pad's side (its box turned into the section's axes).
         let protrusion = self
             .pieces
             .iter()
-            .filter(|p| {
-                !p.is_arm_element
-                    && (p.station_m - spec.station_m).abs()
-                        <= reach_x + p.half_extents_m.iter().fold(0.0, |a: f64, b| a.max(*b))
+            .filter(|p| !p.is_arm_element)
+            .filter_map(|p| {
+                let [ext_x, ext_y] = p.section_extents_m();
+                let overlaps = (p.station_m - spec.station_m).abs() <= 0.5 * spec.length_m + ext_x;
+                overlaps.then_some(sign * p.lateral_m + ext_y - half_depth)
             })
-            .map(|p| p.lateral_m.abs() + p.half_extents_m.iter().fold(0.0, |a: f64, b| a.max(*b)) - half_depth)
             .fold(0.0, f64::max);
         let watch = PadWatch {
             rows: self.arm.arm.station_rows(spec.station_m),
             face_lateral_m: sign * half_depth,
-            margin_m: protrusion + 0.01,
+            margin_m: protrusion + 1e-4,
         };
         Ok(Pad {
             spec: spec.clone(),
@@ -399,6 +399,9 @@ impl Scene {
     /// Loads measured in rapier's last step, as generalized forces on the arm now: the pads'
     /// (`rapier` method) and the friction clamp's correction.
     fn loads_from_rapier(&self) -> GeneralizedLoad {
+        if self.rapier_load.is_empty() && self.grip.is_none() {
+            return GeneralizedLoad::zero(self.arm.arm.elastic_dofs());
+        }
         let (hub, q, _) = self.arm.kinematics();
         let arm = &self.arm.arm;
         let mut load = GeneralizedLoad::zero(arm.elastic_dofs());
@@ -409,28 +412,55 @@ impl Scene {
         load
     }
 
+    /// Whether the arm could reach a pad within a step of `h_s`: each pad's clearance, less what
+    /// stands out beyond the arm's face, against three times the travel of the arm's fastest point.
+    pub fn pad_within_reach(&self, h_s: f64) -> bool {
+        let travel = 3.0 * self.speed_bound_m_s() * h_s;
+        self.pads.iter().any(|p| self.clearance_m(p) <= travel + p.watch.margin_m)
+    }
+
+    /// Whether the next step may be `free_step_s` long: no pad within its reach, and nothing
+    /// staggered (the `rapier` pad body, a friction clamp) that needs the contact step.
+    pub fn free_step_allowed(&self, free_step_s: f64) -> bool {
+        self.method == ContactMethod::Compliant && self.grip.is_none() && !self.pad_within_reach(free_step_s)
+    }
+
     /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
     fn compliant_contacts(&mut self, h_s: f64) -> Vec<ArmContact> {
-        let reach = self.contact_reach(h_s);
-        // rapier's narrow phase is most of a step's cost: skip it while every pad is clearly
-        // out of reach.
-        if self.pads.iter().all(|p| self.clearance_m(p) > reach + p.watch.margin_m) {
+        // rapier's narrow phase is most of a step's cost: skip it while every pad is out of
+        // reach.
+        if !self.pad_within_reach(h_s) {
             return Vec::new();
         }
+        let reach = self.contact_reach(h_s);
         self.pose_pieces(false);
         self.world.detect_collisions(&(), &());
         (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect()
     }
 
-    /// Distance from the arm's face at a pad's station to the pad's face along its normal, m.
+    /// Distance from a pad's face to the arm's face, m: the nearer of the face's two ends from
+    /// the line of the arm's face at the pad's station (its tangent there, with the elastic
+    /// slope), measured along the face's outward normal. Exact for the straight face across the
+    /// pad's length, whatever the arm's angle to the pad; negative in contact.
     fn clearance_m(&self, pad: &Pad) -> f64 {
         let (hub, q, _) = self.arm.kinematics();
         let [u, v, phi] = pad.watch.rows.displacement(&q);
-        let (x, y) = (pad.spec.station_m + u - pad.watch.face_lateral_m * phi, pad.watch.face_lateral_m + v);
+        let lateral = pad.watch.face_lateral_m;
+        let (x, y) = (pad.spec.station_m + u - lateral * phi, lateral + v);
         let (s, c) = hub.angle_rad.sin_cos();
         let point = [self.pivot_m[0] + c * x - s * y, self.pivot_m[1] + s * x + c * y];
+        // The face's outward normal: the body's ±y turned by the hub angle and the slope.
+        let (sf, cf) = (hub.angle_rad + phi).sin_cos();
+        let outward = [-sf * lateral.signum(), cf * lateral.signum()];
         let n = pad.normal_world;
-        n[0] * (point[0] - pad.face_centre_m[0]) + n[1] * (point[1] - pad.face_centre_m[1])
+        let half = 0.5 * pad.spec.length_m;
+        [-1.0, 1.0]
+            .map(|side| {
+                let end = [pad.face_centre_m[0] - side * half * n[1], pad.face_centre_m[1] + side * half * n[0]];
+                outward[0] * (end[0] - point[0]) + outward[1] * (end[1] - point[1])
+            })
+            .into_iter()
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// Each pad's force at the end of the step, from its contact on the arm's new state.
@@ -454,12 +484,15 @@ impl Scene {
 
     /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
     fn contact_reach(&self, h_s: f64) -> f64 {
-        // A bound on any arm point's speed: the hub's rotation at the tip plus the tip's
-        // elastic speed.
+        (3.0 * self.speed_bound_m_s() * h_s).max(2e-3)
+    }
+
+    /// A bound on any arm point's speed: the hub's rotation at the tip (plus a metre) plus the
+    /// tip's elastic speed, m/s.
+    fn speed_bound_m_s(&self) -> f64 {
         let (hub, _, qd) = self.arm.kinematics();
         let [ru, rv, _] = self.arm.arm.tip_rows();
-        let speed = hub.rate_rad_s.abs() * (self.arm.arm.length_m() + 1.0) + ru.dot(&qd).hypot(rv.dot(&qd));
-        (3.0 * speed * h_s).max(2e-3)
+        hub.rate_rad_s.abs() * (self.arm.arm.length_m() + 1.0) + ru.dot(&qd).hypot(rv.dot(&qd))
     }
 
     /// The deepest point of the arm against pad `i`, within `reach` of touching.
