@@ -20,3 +20,4 @@ pub mod scenario;
 pub mod scene;
 pub mod seed;
 pub mod select;
+pub mod sweep;
