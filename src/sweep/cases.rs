@@ -99,7 +99,7 @@ fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path) -> Result
     let (summary, _) = run(scenario, None).map_err(|source| SweepError::Run {
         index: case.index,
         values: case.describe(&plan.keys()),
-        source: Box::new(source),
+        error: Box::new(source),
     })?;
     let file = CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary: &summary };
     let json = serde_json::to_string_pretty(&file).expect("a summary serialises") + "\n";

@@ -51,7 +51,9 @@ pub fn force_vs_weight(path: &Path, plan: &Plan, rows: &[Row]) -> Result<(), Swe
     let curves = curves(plan, rows);
     let points = || curves.iter().flat_map(|(_, p)| p.iter().copied());
     let (x_lo, x_hi) = padded(points().map(|p| p.0), false);
+    // Headroom above the highest point for the legend, a line per curve.
     let (_, y_hi) = padded(points().map(|p| p.1), true);
+    let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
     // The scenario's name from the results, not the plan's path: shards may name the file differently.
     let name = rows.first().and_then(|r| r.get("summary.scenario")).map(|s| s.cell()).unwrap_or_default();
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();

@@ -35,7 +35,8 @@ pub const VARY_FORMS: &str = "KEY=V1,V2,... (TOML values: 10, 0.5, true, \"2-7/8
      (numbers, B included), KEY a dotted path into the scenario such as drive.duration_s, payload.size or \
      dampeners.0.law.stiffness";
 
-/// Errors planning, running or merging a sweep; each names the argument, key, case or file.
+/// Errors planning, running or merging a sweep; each names the argument, key, case or file
+/// and says the cause itself (the fields are not `source`s, so a report does not repeat them).
 #[derive(Debug, Error)]
 pub enum SweepError {
     /// A `--vary` argument that does not parse.
@@ -48,17 +49,17 @@ pub enum SweepError {
     #[error(transparent)]
     Scenario(Box<ScenarioError>),
     /// A case whose scenario does not parse or validate.
-    #[error("case {index} ({values}): {source}")]
-    Case { index: usize, values: String, source: Box<ScenarioError> },
+    #[error("case {index} ({values}): {error}")]
+    Case { index: usize, values: String, error: Box<ScenarioError> },
     /// A case whose run failed.
-    #[error("case {index} ({values}): running: {source}")]
-    Run { index: usize, values: String, source: Box<SceneError> },
+    #[error("case {index} ({values}): running: {error}")]
+    Run { index: usize, values: String, error: Box<SceneError> },
     /// A bad shard selection.
     #[error("shard: {0}")]
     Shard(String),
     /// Reading or writing a file.
-    #[error("{path}: {source}")]
-    Io { path: PathBuf, source: std::io::Error },
+    #[error("{path}: {error}")]
+    Io { path: PathBuf, error: std::io::Error },
     /// A plan or case file that is not what a sweep writes.
     #[error("{path}: {message}")]
     Format { path: PathBuf, message: String },
@@ -131,7 +132,7 @@ impl From<ScenarioError> for SweepError {
 
 /// An I/O error naming `path`.
 pub(crate) fn io_error(path: &Path) -> impl FnOnce(std::io::Error) -> SweepError + '_ {
-    move |source| SweepError::Io { path: path.into(), source }
+    move |error| SweepError::Io { path: path.into(), error }
 }
 
 /// Writes `bytes` to a temporary name beside `path` (`tag` keeps concurrent writers apart), then

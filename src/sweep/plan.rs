@@ -105,7 +105,7 @@ fn build_case(
     }
     let mut case = Case { index, hash: String::new(), values: values.into_iter().collect() };
     let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
-    let failed = |source| SweepError::Case { index, values: case.describe(&keys), source: Box::new(source) };
+    let failed = |source| SweepError::Case { index, values: case.describe(&keys), error: Box::new(source) };
     let spec: ScenarioSpec = document
         .try_into()
         .map_err(|e: toml::de::Error| failed(ScenarioError::Parse { path: path.into(), message: e.to_string() }))?;
