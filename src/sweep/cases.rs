@@ -3,8 +3,9 @@
 //! current and is not run again.
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
-use rayon::prelude::*;
 use serde::Serialize;
 
 use super::plan::{Case, Plan};
@@ -76,7 +77,9 @@ fn remove_stale(plan: &Plan, cases: &Path, shard: Shard) -> Result<(), SweepErro
 }
 
 /// Runs the cases `todo` of `plan` (their `scenarios` by index) on `threads` workers (rayon's
-/// default if `None`), writing each case file as it finishes and calling `done` after it.
+/// default if `None`), writing each case file as it finishes and calling `done` after it. The
+/// longest cases go first and each worker takes the next as it frees up, so the workers finish
+/// together to within one of the shortest cases. Stops at the first failure and returns it.
 pub fn run_cases(
     plan: &Plan,
     scenarios: &[Scenario],
@@ -86,13 +89,29 @@ pub fn run_cases(
     done: &(dyn Fn(&Case) + Sync),
 ) -> Result<(), SweepError> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
-    pool.install(|| {
-        todo.par_iter().with_max_len(1).try_for_each(|&i| {
-            run_case(plan, &plan.cases[i], &scenarios[i], dir)?;
-            done(&plan.cases[i]);
-            Ok(())
-        })
-    })
+    let queue = longest_first(todo, scenarios);
+    let next = AtomicUsize::new(0);
+    let failure: Mutex<Option<SweepError>> = Mutex::new(None);
+    pool.broadcast(|_| {
+        while let Some(&i) = queue.get(next.fetch_add(1, Ordering::Relaxed)) {
+            match run_case(plan, &plan.cases[i], &scenarios[i], dir) {
+                Ok(()) => done(&plan.cases[i]),
+                Err(e) => {
+                    failure.lock().expect("no worker panics holding it").get_or_insert(e);
+                    next.store(queue.len(), Ordering::Relaxed);
+                }
+            }
+        }
+    });
+    failure.into_inner().expect("no worker panics holding it").map_or(Ok(()), Err)
+}
+
+/// `todo` ordered by the steps each case takes (its cost), most first; ties by index.
+fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
+    let steps = |i: usize| scenarios[i].duration_s() / scenarios[i].spec.time.step_s;
+    let mut queue = todo.to_vec();
+    queue.sort_by(|&a, &b| steps(b).total_cmp(&steps(a)).then(a.cmp(&b)));
+    queue
 }
 
 fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path) -> Result<(), SweepError> {
