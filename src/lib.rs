@@ -22,3 +22,4 @@ pub mod scenario;
 pub mod scene;
 pub mod seed;
 pub mod select;
+pub mod sweep;

@@ -82,6 +82,10 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+    /// Run a scenario over the Cartesian product of varied keys, in parallel (or one shard of
+    /// it): per-case results, a table and a chart of peak contact force against string weight
+    /// (docs/sweeps.md). `pipearm sweep merge DIR` joins the shards.
+    Sweep(SweepArgs),
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -127,6 +131,7 @@ fn main() -> Result<()> {
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
+        Command::Sweep(args) => sweep(args),
     }
 }
 
@@ -259,6 +264,94 @@ wrote {}/{{points.csv, stability.csv, report.md, chart.svg, chart.png}}",
             dir.display()
         );
     }
+    Ok(())
+}
+
+/// `pipearm sweep`: its arguments, or `merge DIR`.
+#[derive(clap::Args)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct SweepArgs {
+    #[command(subcommand)]
+    merge: Option<SweepMerge>,
+    /// Base scenario file.
+    #[arg(required = true)]
+    scenario: Option<PathBuf>,
+    /// A varied key: KEY=V1,V2,... or KEY=A..B:STEP (B included); repeat for a Cartesian product.
+    #[arg(long, value_name = "KEY=VALUES")]
+    vary: Vec<pipearm::sweep::Vary>,
+    /// Output folder: plan.json, cases/, results.csv, results.json, force_vs_weight.svg.
+    #[arg(long, default_value = "recordings/sweep")]
+    out: PathBuf,
+    /// Worker threads (default: rayon's, one per CPU).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+    /// Run only shard I of N (cases with index % N == I, I from 0); merge afterwards.
+    #[arg(long, value_name = "I/N", conflicts_with = "shards")]
+    shard: Option<pipearm::sweep::Shard>,
+    /// Run one of N shards, I from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; merge afterwards.
+    #[arg(long, value_name = "N")]
+    shards: Option<usize>,
+}
+
+#[derive(Subcommand)]
+enum SweepMerge {
+    /// Join a sharded sweep's case files into results.csv, results.json and force_vs_weight.svg.
+    Merge {
+        /// The sweep's output folder.
+        dir: PathBuf,
+    },
+}
+
+fn sweep(args: SweepArgs) -> Result<()> {
+    use pipearm::sweep::{Progress, Request, Shard, merge};
+    if let Some(SweepMerge::Merge { dir }) = args.merge {
+        return print_merged(&merge(&dir)?);
+    }
+    let shard = match (args.shard, args.shards) {
+        (Some(shard), _) => shard,
+        (None, Some(count)) => Shard::from_env(count, |name| std::env::var(name).ok())?,
+        (None, None) => Shard::ALL,
+    };
+    let request = Request {
+        scenario: args.scenario.expect("required by clap"),
+        vary: args.vary,
+        out: args.out,
+        threads: args.threads.map(|n| n as usize),
+        shard,
+    };
+    let bar = indicatif::ProgressBar::new(0)
+        .with_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cases, {elapsed}, eta {eta}")?);
+    let report = pipearm::sweep::sweep(&request, &|p| match p {
+        Progress::Start { todo } => bar.set_length(todo as u64),
+        Progress::Done { .. } => bar.inc(1),
+    })?;
+    bar.finish_and_clear();
+    println!(
+        "shard {}/{}: ran {}, skipped {} current, of {} cases; case files in {}",
+        shard.index,
+        shard.count,
+        report.ran,
+        report.current,
+        report.cases,
+        request.out.join("cases").display()
+    );
+    match &report.merged {
+        Some(merged) => print_merged(merged),
+        None => {
+            println!("when every shard is done: pipearm sweep merge {}", request.out.display());
+            Ok(())
+        }
+    }
+}
+
+fn print_merged(merged: &pipearm::sweep::Merged) -> Result<()> {
+    println!(
+        "merged {} cases: {}, {}, {}",
+        merged.cases,
+        merged.csv.display(),
+        merged.json.display(),
+        merged.chart.display()
+    );
     Ok(())
 }
 

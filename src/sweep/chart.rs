@@ -1,0 +1,105 @@
+//! The sweep's chart: peak contact force (the largest over the contact pairs, N) against the
+//! weight of the string held (payload mass × standard gravity, N), one curve per combination of
+//! the varied keys outside `payload.` (SVG).
+
+use std::path::Path;
+
+use plotters::prelude::*;
+
+use super::SweepError;
+use super::plan::Plan;
+use super::table::Row;
+use crate::arm::STANDARD_GRAVITY_M_S2;
+
+/// One curve: its label and its (weight N, peak force N) points, by weight.
+pub type Curve = (String, Vec<(f64, f64)>);
+
+/// The curves of the chart, in the order their first case comes in the plan. Cases without a
+/// contact pair have no peak force and are left out.
+pub fn curves(plan: &Plan, rows: &[Row]) -> Vec<Curve> {
+    let others: Vec<&str> = plan.keys().into_iter().filter(|k| !k.starts_with("payload.")).collect();
+    let mut curves: Vec<Curve> = Vec::new();
+    for (case, row) in plan.cases.iter().zip(rows) {
+        let Some(point) = weight_and_force(row) else { continue };
+        let label = if others.is_empty() { "all cases".to_string() } else { case.describe(&others) };
+        match curves.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, points)) => points.push(point),
+            None => curves.push((label, vec![point])),
+        }
+    }
+    for (_, points) in &mut curves {
+        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+    curves
+}
+
+/// (string weight N, largest peak contact force over the pairs N) of a case.
+fn weight_and_force(row: &Row) -> Option<(f64, f64)> {
+    let weight = row.get("summary.payload_kg")?.as_f64()? * STANDARD_GRAVITY_M_S2;
+    let force = row
+        .scalars
+        .iter()
+        .filter(|(k, _)| k.starts_with("summary.pairs.") && k.ends_with(".peak_force_n"))
+        .filter_map(|(_, v)| v.as_f64())
+        .reduce(f64::max)?;
+    Some((weight, force))
+}
+
+/// Draws the chart to `path`.
+pub fn force_vs_weight(path: &Path, plan: &Plan, rows: &[Row]) -> Result<(), SweepError> {
+    let err = |e: &dyn std::fmt::Display| SweepError::Chart { path: path.into(), message: e.to_string() };
+    let curves = curves(plan, rows);
+    let points = || curves.iter().flat_map(|(_, p)| p.iter().copied());
+    let (x_lo, x_hi) = padded(points().map(|p| p.0), false);
+    // Headroom above the highest point for the legend, a line per curve.
+    let (_, y_hi) = padded(points().map(|p| p.1), true);
+    let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
+    // The scenario's name from the results, not the plan's path: shards may name the file differently.
+    let name = rows.first().and_then(|r| r.get("summary.scenario")).map(|s| s.cell()).unwrap_or_default();
+    crate::bench::register_font();
+    let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(&e))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("{name}: peak contact force against string weight"), ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(80)
+        .build_cartesian_2d(x_lo..x_hi, 0.0..y_hi)
+        .map_err(|e| err(&e))?;
+    chart
+        .configure_mesh()
+        .x_desc("string weight, payload mass × g (N)")
+        .y_desc("peak contact force, largest pair (N)")
+        .draw()
+        .map_err(|e| err(&e))?;
+    for (k, (label, points)) in curves.iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        chart
+            .draw_series(LineSeries::new(points.iter().copied(), color.stroke_width(2)))
+            .map_err(|e| err(&e))?
+            .label(label.clone())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
+        chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).map_err(|e| err(&e))?;
+    }
+    if !curves.is_empty() {
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
+    }
+    root.present().map_err(|e| err(&e))
+}
+
+/// An axis range around `values` with 5 % margins (from 0 if `from_zero`; 0..1 if empty).
+fn padded(values: impl Iterator<Item = f64>, from_zero: bool) -> (f64, f64) {
+    let (lo, hi) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let lo = if from_zero { 0.0 } else { lo };
+    let margin = 0.05 * (hi - lo).max(0.1 * hi.abs()).max(1e-9);
+    (if from_zero { 0.0 } else { lo - margin }, hi + margin)
+}

@@ -1,0 +1,225 @@
+//! The plan of a sweep: every case's values, its scenario (built from the base file with the
+//! values set, then validated) and its hash, in index order (the last key varies fastest).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::vary::{Vary, show};
+use super::{SweepError, io_error};
+use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
+
+/// What a sweep runs; written to `DIR/plan.json` by every shard.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Plan {
+    /// The base scenario file, as given.
+    pub scenario: PathBuf,
+    /// The varied keys and their values, in the order given.
+    pub vary: Vec<Vary>,
+    /// Every case, by index.
+    pub cases: Vec<Case>,
+}
+
+/// One case of a sweep.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Case {
+    /// Position in the Cartesian product, from 0.
+    pub index: usize,
+    /// FNV-1a 64 of the case's canonical spec and its robot file, 16 hex digits.
+    pub hash: String,
+    /// The value of each varied key.
+    pub values: BTreeMap<String, toml::Value>,
+}
+
+impl Case {
+    /// `key=value, ...` in the plan's key order, for messages and labels.
+    pub fn describe(&self, keys: &[&str]) -> String {
+        keys.iter()
+            .map(|k| format!("{k}={}", self.values.get(*k).map(show).unwrap_or_default()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+}
+
+impl Plan {
+    /// Builds and validates every case of `vary` over the scenario file at `path`; returns the
+    /// plan and the cases' scenarios (by index). Fails on the first bad key or case.
+    pub fn build(path: &Path, vary: Vec<Vary>) -> Result<(Plan, Vec<Scenario>), SweepError> {
+        let base = read_document(path)?;
+        if let Some(key) = duplicate_key(&vary) {
+            return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
+        }
+        let mut cases = Vec::new();
+        let mut scenarios = Vec::new();
+        for (index, values) in product(&vary).into_iter().enumerate() {
+            let (case, scenario) = build_case(path, &base, index, values, &vary)?;
+            cases.push(case);
+            scenarios.push(scenario);
+        }
+        Ok((Plan { scenario: path.into(), vary, cases }, scenarios))
+    }
+
+    /// The varied keys, in the order given.
+    pub fn keys(&self) -> Vec<&str> {
+        self.vary.iter().map(|v| v.key.as_str()).collect()
+    }
+}
+
+fn read_document(path: &Path) -> Result<toml::Value, ScenarioError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
+    text.parse::<toml::Table>()
+        .map(toml::Value::Table)
+        .map_err(|e| ScenarioError::Parse { path: path.into(), message: e.to_string() })
+}
+
+fn duplicate_key(vary: &[Vary]) -> Option<String> {
+    vary.iter().enumerate().find(|(i, v)| vary[..*i].iter().any(|w| w.key == v.key)).map(|(_, v)| v.key.clone())
+}
+
+/// The Cartesian product of the values, the last key varying fastest.
+fn product(vary: &[Vary]) -> Vec<Vec<(String, toml::Value)>> {
+    vary.iter().fold(vec![Vec::new()], |acc, v| {
+        acc.iter()
+            .flat_map(|prefix| {
+                v.values.iter().map(move |value| {
+                    let mut row = prefix.clone();
+                    row.push((v.key.clone(), value.clone()));
+                    row
+                })
+            })
+            .collect()
+    })
+}
+
+fn build_case(
+    path: &Path,
+    base: &toml::Value,
+    index: usize,
+    values: Vec<(String, toml::Value)>,
+    vary: &[Vary],
+) -> Result<(Case, Scenario), SweepError> {
+    let mut document = base.clone();
+    for (key, value) in &values {
+        set_key(&mut document, key, value.clone()).map_err(|message| SweepError::Key { key: key.clone(), message })?;
+    }
+    let mut case = Case { index, hash: String::new(), values: values.into_iter().collect() };
+    let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
+    let failed = |source| SweepError::Case { index, values: case.describe(&keys), error: Box::new(source) };
+    let spec: ScenarioSpec = document
+        .try_into()
+        .map_err(|e: toml::de::Error| failed(ScenarioError::Parse { path: path.into(), message: e.to_string() }))?;
+    let scenario = Scenario::from_spec(path, spec).map_err(failed)?;
+    let hash = case_hash(&scenario).map_err(failed)?;
+    case.hash = hash;
+    Ok((case, scenario))
+}
+
+/// Sets the dotted `key` in `document`; every segment but the last must exist (a numeric
+/// segment indexes an array). The error message says what does exist there.
+pub fn set_key(document: &mut toml::Value, key: &str, value: toml::Value) -> Result<(), String> {
+    let segments: Vec<&str> = key.split('.').collect();
+    let (last, parents) = segments.split_last().expect("split gives at least one segment");
+    let mut node = document;
+    for (depth, segment) in parents.iter().enumerate() {
+        node = child(node, segment, &segments[..depth].join("."))?;
+    }
+    let at = parents.join(".");
+    match node {
+        toml::Value::Table(table) => {
+            table.insert(last.to_string(), value);
+            Ok(())
+        }
+        toml::Value::Array(items) => {
+            let i = array_index(items.len(), last, &at)?;
+            items[i] = value;
+            Ok(())
+        }
+        other => Err(format!("`{at}` is of type {}, not a table or an array", other.type_str())),
+    }
+}
+
+fn child<'a>(node: &'a mut toml::Value, segment: &str, at: &str) -> Result<&'a mut toml::Value, String> {
+    check_child(node, segment, at)?;
+    Ok(match node {
+        toml::Value::Table(table) => &mut table[segment],
+        toml::Value::Array(items) => &mut items[segment.parse::<usize>().expect("checked")],
+        _ => unreachable!("checked"),
+    })
+}
+
+/// Whether `node` has `segment`; if not, what it has.
+fn check_child(node: &toml::Value, segment: &str, at: &str) -> Result<(), String> {
+    let place = if at.is_empty() { "at the top of the scenario".to_string() } else { format!("under `{at}`") };
+    match node {
+        toml::Value::Table(table) if table.contains_key(segment) => Ok(()),
+        toml::Value::Table(table) => {
+            let keys: Vec<&str> = table.keys().map(String::as_str).collect();
+            Err(format!(
+                "`{segment}` does not exist {place}; there: {} (only a key's last segment may be new; \
+                 set a whole table inline, e.g. physics={{gravity_m_s2=9.81}})",
+                keys.join(", ")
+            ))
+        }
+        toml::Value::Array(items) => array_index(items.len(), segment, at).map(|_| ()),
+        other => Err(format!("`{at}` is of type {}, it has no `{segment}`", other.type_str())),
+    }
+}
+
+fn array_index(len: usize, segment: &str, at: &str) -> Result<usize, String> {
+    match segment.parse::<usize>() {
+        Ok(i) if i < len => Ok(i),
+        Ok(i) => Err(format!("index {i} is outside the array `{at}` (allowed 0..={})", len as i64 - 1)),
+        Err(_) => Err(format!("`{at}` is an array: allowed an index 0..={}, not `{segment}`", len as i64 - 1)),
+    }
+}
+
+/// FNV-1a 64 of the case's canonical TOML spec followed by the bytes of its robot file, as 16
+/// hex digits: equal for equal inputs, so a rerun can tell a current case file.
+pub fn case_hash(scenario: &Scenario) -> Result<String, ScenarioError> {
+    let path = &scenario.path;
+    let canonical = toml::to_string(&scenario.spec)
+        .map_err(|e| ScenarioError::Parse { path: path.clone(), message: format!("canonical form: {e}") })?;
+    let robot = path.parent().unwrap_or(Path::new(".")).join(&scenario.spec.robot);
+    let robot_bytes = std::fs::read(&robot).map_err(|source| ScenarioError::Io { path: robot, source })?;
+    Ok(format!("{:016x}", fnv1a64(&[canonical.as_bytes(), &robot_bytes])))
+}
+
+/// FNV-1a, 64 bits, over the parts in order.
+pub fn fnv1a64(parts: &[&[u8]]) -> u64 {
+    const OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
+    const PRIME: u64 = 0x0000_0100_0000_01b3;
+    parts.iter().flat_map(|p| p.iter()).fold(OFFSET_BASIS, |h, &b| (h ^ u64::from(b)).wrapping_mul(PRIME))
+}
+
+/// Reads a plan written by a sweep.
+pub fn read_plan(path: &Path) -> Result<Plan, SweepError> {
+    let text = std::fs::read_to_string(path).map_err(io_error(path))?;
+    serde_json::from_str(&text).map_err(|e| SweepError::Format { path: path.into(), message: e.to_string() })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fnv1a64_matches_the_reference_vectors() {
+        assert_eq!(fnv1a64(&[b""]), 0xcbf29ce484222325);
+        assert_eq!(fnv1a64(&[b"a"]), 0xaf63dc4c8601ec8c);
+        assert_eq!(fnv1a64(&[b"foo", b"bar"]), fnv1a64(&[b"foobar"]));
+        assert_eq!(fnv1a64(&[b"foobar"]), 0x85944171f73967e8);
+    }
+
+    #[test]
+    fn keys_walk_tables_and_arrays() {
+        let mut doc: toml::Value = toml::from_str("[a]\nb = 1\n[[c]]\nd = 2\n").unwrap();
+        set_key(&mut doc, "a.b", toml::Value::Integer(5)).unwrap();
+        set_key(&mut doc, "a.new", toml::Value::Integer(6)).unwrap();
+        set_key(&mut doc, "c.0.d", toml::Value::Integer(7)).unwrap();
+        assert_eq!(doc["a"]["b"].as_integer(), Some(5));
+        assert_eq!(doc["c"][0]["d"].as_integer(), Some(7));
+        assert!(set_key(&mut doc, "x.y", toml::Value::Integer(1)).unwrap_err().contains("there: a, c"));
+        assert!(set_key(&mut doc, "c.1.d", toml::Value::Integer(1)).unwrap_err().contains("outside the array `c`"));
+        assert!(set_key(&mut doc, "a.b.z", toml::Value::Integer(1)).unwrap_err().contains("`a.b` is of type integer"));
+    }
+}

@@ -1,0 +1,134 @@
+//! Merging a sweep: the plan and every case file → `results.json` (the case files in index
+//! order, verbatim), `results.csv` (one row per case: index, hash, each varied key, every
+//! scalar of the summary but the per-impact arrays) and the chart. The bytes depend only on
+//! the case files, so any split into shards merges to the same files.
+
+use std::path::{Path, PathBuf};
+
+use super::cases::case_path;
+use super::flat::{Scalar, flatten};
+use super::plan::{Plan, read_plan};
+use super::vary::show;
+use super::{SweepError, chart, io_error, write_atomic};
+
+/// Keys whose values the table leaves out (they stay in the JSON).
+pub const TABLE_SKIPS: [&str; 1] = ["impacts"];
+
+/// The files a merge wrote.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Merged {
+    /// Number of cases.
+    pub cases: usize,
+    /// `results.csv`.
+    pub csv: PathBuf,
+    /// `results.json`.
+    pub json: PathBuf,
+    /// `force_vs_weight.svg`.
+    pub chart: PathBuf,
+}
+
+/// One case read back: its file's text and its scalars.
+pub struct Row {
+    /// The case file, verbatim.
+    pub text: String,
+    /// Its scalars by dotted path (`values.<key>`, `summary.<...>`).
+    pub scalars: Vec<(String, Scalar)>,
+}
+
+impl Row {
+    /// The scalar at `path`.
+    pub fn get(&self, path: &str) -> Option<&Scalar> {
+        self.scalars.iter().find(|(k, _)| k == path).map(|(_, v)| v)
+    }
+}
+
+/// Reads `DIR/plan.json` and every case file and writes the results; fails naming the cases
+/// not run yet.
+pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
+    let plan = read_plan(&dir.join("plan.json"))?;
+    let rows = read_rows(&plan, dir)?;
+    let merged = Merged {
+        cases: rows.len(),
+        csv: dir.join("results.csv"),
+        json: dir.join("results.json"),
+        chart: dir.join("force_vs_weight.svg"),
+    };
+    write_atomic(&merged.json, json(&rows).as_bytes(), "merge")?;
+    write_atomic(&merged.csv, csv(&plan, &rows).as_bytes(), "merge")?;
+    chart::force_vs_weight(&merged.chart, &plan, &rows)?;
+    Ok(merged)
+}
+
+fn read_rows(plan: &Plan, dir: &Path) -> Result<Vec<Row>, SweepError> {
+    let missing: Vec<String> = plan
+        .cases
+        .iter()
+        .filter(|c| !case_path(dir, c).exists())
+        .map(|c| format!("{} ({})", c.index, c.describe(&plan.keys())))
+        .collect();
+    if !missing.is_empty() {
+        let shown = missing.iter().take(20).cloned().collect::<Vec<_>>().join("; ");
+        let more = if missing.len() > 20 { format!("; and {} more", missing.len() - 20) } else { String::new() };
+        return Err(SweepError::Missing { dir: dir.into(), count: missing.len(), missing: shown + &more });
+    }
+    plan.cases
+        .iter()
+        .map(|c| {
+            let path = case_path(dir, c);
+            let text = std::fs::read_to_string(&path).map_err(io_error(&path))?;
+            let scalars = flatten(&text, &TABLE_SKIPS)
+                .ok_or_else(|| SweepError::Format { path: path.clone(), message: "not JSON".into() })?;
+            Ok(Row { text, scalars })
+        })
+        .collect()
+}
+
+/// The case files as one JSON array, each indented as serde_json's pretty printer would.
+fn json(rows: &[Row]) -> String {
+    let items: Vec<String> = rows
+        .iter()
+        .map(|r| r.text.trim_end().lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n"))
+        .collect();
+    format!("[\n{}\n]\n", items.join(",\n"))
+}
+
+/// Columns: index, hash, each varied key, then every summary scalar met in any case, in
+/// the order first met.
+fn csv(plan: &Plan, rows: &[Row]) -> String {
+    let mut summary_columns: Vec<&str> = Vec::new();
+    for (path, _) in rows.iter().flat_map(|r| &r.scalars) {
+        if let Some(name) = path.strip_prefix("summary.")
+            && !summary_columns.contains(&name)
+        {
+            summary_columns.push(name);
+        }
+    }
+    let keys = plan.keys();
+    let mut out =
+        line(["index", "hash"].into_iter().chain(keys.iter().copied()).chain(summary_columns.iter().copied()));
+    for (row, case) in rows.iter().zip(&plan.cases) {
+        let cell = |path: String| row.get(&path).map(Scalar::cell).unwrap_or_default();
+        // An inline table or array value has no single scalar: the plan shows it as TOML.
+        let value = |k: &&str| row.get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), Scalar::cell);
+        let cells: Vec<String> = [cell("index".into()), cell("hash".into())]
+            .into_iter()
+            .chain(keys.iter().map(value))
+            .chain(summary_columns.iter().map(|c| cell(format!("summary.{c}"))))
+            .collect();
+        out += &line(cells.iter().map(String::as_str));
+    }
+    out
+}
+
+fn line<'a>(cells: impl Iterator<Item = &'a str>) -> String {
+    cells.map(quote).collect::<Vec<_>>().join(",") + "\n"
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn quote(field: &str) -> String {
+    if field.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", field.replace('"', "\"\""))
+    } else {
+        field.to_string()
+    }
+}
