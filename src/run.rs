@@ -299,7 +299,7 @@ fn divergence_error(scenario: &Scenario, scene: &Scene, d: Divergence) -> SceneE
             .spec
             .dampeners
             .iter()
-            .map(|p| crate::bench::stability::pad_spring_limit_s(&p.law, scenario.spec.contact.pad_mass_kg))
+            .filter_map(|p| p.law.explicit_body_limit_s(scenario.spec.contact.pad_mass_kg))
             .fold(f64::INFINITY, f64::min);
         format!(
             "rapier integrates the pad body on its spring-damper explicitly, stable only below {limit:.3e} s: use \

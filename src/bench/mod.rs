@@ -402,9 +402,9 @@ pub fn reference(
     base: &Scenario,
     physics_of: &Variant,
     linear: &[ForceLaw],
+    h_ref: f64,
     mesh_check: bool,
 ) -> Result<Reference, SceneError> {
-    let h_ref = reference_step_s(base)?;
     let fidelity = Fidelity::Fe;
     let at = |step_s: f64, elements: Option<usize>| Variant {
         axis: "reference".into(),
@@ -495,8 +495,10 @@ pub fn bench(
     let main_physics = &variants[0];
     let total = variants.len() + 3;
     progress("reference (fe, fine step)", 0, total);
+    let h_ref = reference_step_s(scenario).map_err(labelled("reference step"))?;
     let mut references = vec![
-        reference(scenario, main_physics, &[], options.mesh_check).map_err(labelled("reference (fe, fine step)"))?,
+        reference(scenario, main_physics, &[], h_ref, options.mesh_check)
+            .map_err(labelled("reference (fe, fine step)"))?,
     ];
     let linear = linear_laws(scenario, references[0].peak_force_n).map_err(labelled("linear pad laws"))?;
     let mut points = Vec::with_capacity(variants.len());
@@ -505,8 +507,8 @@ pub fn bench(
         let r = match references.iter().position(|r| r.variant.physics() == v.physics()) {
             Some(k) => &references[k],
             None => {
-                let r =
-                    reference(scenario, v, &linear, false).map_err(labelled(format!("reference of {}", v.label())))?;
+                let r = reference(scenario, v, &linear, h_ref, false)
+                    .map_err(labelled(format!("reference of {}", v.label())))?;
                 references.push(r);
                 references.last().expect("just pushed")
             }

@@ -228,21 +228,20 @@ pub fn map(
     }
     let scene = Scene::with_fidelity(scenario, auto)?;
     let masses = scene.pad_effective_masses_kg();
+    let penalties = scene.penalty_limits_s(reference.peak_force_n);
     let contact: Vec<ContactRow> = scenario
         .spec
         .dampeners
         .iter()
-        .zip(masses)
+        .zip(masses.into_iter().zip(penalties))
         .zip(linear)
-        .filter_map(|((pad, m), linear)| {
-            let m = m?;
-            let k = pad.law.tangent_stiffness_at_force(reference.peak_force_n);
+        .filter_map(|((pad, (m, penalty)), linear)| {
             Some(ContactRow {
                 pad: pad.name.clone(),
-                effective_mass_kg: m,
-                stiffness_n_m: k,
-                penalty_limit_s: 2.0 * (m / k).sqrt(),
-                pad_spring_limit_s: pad_spring_limit_s(linear, scenario.spec.contact.pad_mass_kg),
+                effective_mass_kg: m?,
+                stiffness_n_m: pad.law.tangent_stiffness_at_force(reference.peak_force_n),
+                penalty_limit_s: penalty?,
+                pad_spring_limit_s: linear.explicit_body_limit_s(scenario.spec.contact.pad_mass_kg).unwrap_or(f64::NAN),
             })
         })
         .collect();
@@ -332,15 +331,6 @@ pub enum ClampOutcome {
     },
 }
 
-/// The explicit (symplectic Euler) limit of a mass `mass_kg` on a linear spring–damper, s:
-/// the Jury conditions on λ² − (2 − 2ζωh − ω²h²)λ + (1 − 2ζωh) give ωh < 2(√(1 + ζ²) − ζ).
-pub fn pad_spring_limit_s(law: &ForceLaw, mass_kg: f64) -> f64 {
-    let ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: c } = *law else { return f64::NAN };
-    let omega = (k / mass_kg).sqrt();
-    let zeta = c / (2.0 * (k * mass_kg).sqrt());
-    2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta)
-}
-
 fn dedup(mut v: Vec<Fidelity>) -> Vec<Fidelity> {
     let mut seen = Vec::new();
     v.retain(|f| {
@@ -371,12 +361,12 @@ mod tests {
     fn the_pad_body_limit_is_where_symplectic_euler_on_a_damped_spring_turns_unstable() {
         for c in [0.0, 2.0e3, 2.4e4] {
             let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: c };
-            let limit = pad_spring_limit_s(&law, 1.0);
+            let limit = law.explicit_body_limit_s(1.0).unwrap();
             assert!(amplitude_after(&law, 1.0, 0.99 * limit) < 10.0, "c = {c}: unstable below {limit}");
             assert!(amplitude_after(&law, 1.0, 1.01 * limit) > 1e3, "c = {c}: stable above {limit}");
         }
         // Undamped, it is the textbook 2/ω.
-        let undamped = pad_spring_limit_s(&ForceLaw::Linear { stiffness_n_m: 4.0, damping_n_s_m: 0.0 }, 1.0);
+        let undamped = ForceLaw::Linear { stiffness_n_m: 4.0, damping_n_s_m: 0.0 }.explicit_body_limit_s(1.0).unwrap();
         assert!((undamped - 1.0).abs() < 1e-12);
     }
 
