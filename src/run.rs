@@ -157,12 +157,16 @@ pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummar
 
 /// Runs a scenario with `options`.
 pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
+    // The beam and its modes, built once for the model choice and the model.
+    let beam = crate::beam::BeamModel::new(scenario.beam_spec()?).map_err(ArmError::from)?;
+    let modes = beam.modes().map_err(ArmError::from)?;
     let choice = match options.fidelity {
         Some(fidelity) => crate::select::Choice { fidelity, reason: "set on the command line".into() },
-        None => scenario.fidelity()?,
+        None => scenario.fidelity_for(&beam, &modes)?,
     };
     let fidelity = choice.fidelity;
-    let mut scene = Scene::with_fidelity(scenario, fidelity)?;
+    let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, scenario.arm_options())?;
+    let mut scene = Scene::with_arm(scenario, arm)?;
     let h = scenario.spec.time.step_s;
     let free_h = scenario.spec.time.free_step_s.unwrap_or(h);
     let end = scenario.duration_s();

@@ -499,9 +499,25 @@ impl Scenario {
 
     /// The fidelity to run at: the scenario's, or the one `auto` chooses, with the reason.
     pub fn fidelity(&self) -> Result<crate::select::Choice, ScenarioError> {
+        self.fidelity_by(|| crate::select::choose(self))
+    }
+
+    /// [`Self::fidelity`] with the scenario's beam and clamped modes already built.
+    pub fn fidelity_for(
+        &self,
+        beam: &BeamModel,
+        modes: &crate::beam::ModalBasis,
+    ) -> Result<crate::select::Choice, ScenarioError> {
+        self.fidelity_by(|| crate::select::choose_for(self, beam, modes))
+    }
+
+    fn fidelity_by(
+        &self,
+        auto: impl FnOnce() -> Result<crate::select::Choice, crate::beam::BeamError>,
+    ) -> Result<crate::select::Choice, ScenarioError> {
         let fixed = |fidelity| Ok(crate::select::Choice { fidelity, reason: "set in the scenario".into() });
         match self.spec.model {
-            ModelSpec::Auto => crate::select::choose(self).map_err(|e| self.invalid("model", e.to_string())),
+            ModelSpec::Auto => auto().map_err(|e| self.invalid("model", e.to_string())),
             ModelSpec::Rigid => fixed(Fidelity::Rigid),
             ModelSpec::Modal { modes } => fixed(Fidelity::Modal { modes }),
             ModelSpec::Fe => fixed(Fidelity::Fe),

@@ -21,7 +21,7 @@ use serde::Serialize;
 
 use crate::analysis::StiffnessClass;
 use crate::arm::Fidelity;
-use crate::beam::{BeamError, BeamModel};
+use crate::beam::{BeamError, BeamModel, ModalBasis};
 use crate::scenario::{DriveSpec, Scenario};
 
 /// The fidelity chosen and why.
@@ -38,6 +38,12 @@ pub fn choose(scenario: &Scenario) -> Result<Choice, BeamError> {
     let beam =
         BeamModel::new(scenario.beam_spec().map_err(|e| BeamError::invalid("payload", f64::NAN, e.to_string()))?)?;
     let modes = beam.modes()?;
+    choose_for(scenario, &beam, &modes)
+}
+
+/// [`choose`] for the scenario's beam and its clamped modes, already built (a run builds them
+/// once for the choice and the model).
+pub fn choose_for(scenario: &Scenario, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
     let g = scenario.spec.physics.gravity_m_s2;
     let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
     let frequencies = modes.frequencies_hz();

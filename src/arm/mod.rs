@@ -158,8 +158,18 @@ pub struct ArmModel {
 impl ArmModel {
     /// Reduces `beam` to `fidelity` with `options`.
     pub fn new(beam: BeamModel, fidelity: Fidelity, options: ArmOptions) -> Result<Self, ArmError> {
-        validate_options(&options)?;
         let modes = beam.modes()?;
+        Self::with_modes(beam, modes, fidelity, options)
+    }
+
+    /// [`Self::new`] with `beam`'s clamped modes already solved (`beam.modes()`).
+    pub fn with_modes(
+        beam: BeamModel,
+        modes: ModalBasis,
+        fidelity: Fidelity,
+        options: ArmOptions,
+    ) -> Result<Self, ArmError> {
+        validate_options(&options)?;
         let (basis, modal_omegas_rad_s) = match fidelity {
             Fidelity::Rigid => (DMatrix::zeros(beam.dofs(), 0), Vec::new()),
             Fidelity::Modal { modes: n } => {

@@ -138,7 +138,11 @@ impl Scene {
 
     /// Builds the world of a scenario at `fidelity`.
     pub fn with_fidelity(scenario: &Scenario, fidelity: crate::arm::Fidelity) -> Result<Self, SceneError> {
-        let arm_model = scenario.arm_model(fidelity)?;
+        Self::with_arm(scenario, scenario.arm_model(fidelity)?)
+    }
+
+    /// Builds the world of a scenario around an arm model already reduced for it.
+    pub fn with_arm(scenario: &Scenario, arm_model: crate::arm::ArmModel) -> Result<Self, SceneError> {
         let arm = ArmSimulation::new(arm_model, scenario.hub_drive(), scenario.spec.integrator)?;
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
