@@ -53,7 +53,7 @@ pub fn choose_for(scenario: &Scenario, beam: &BeamModel, modes: &ModalBasis) -> 
     for pad in &scenario.spec.dampeners {
         let station_shape = beam.point_rows(pad.station_m)[1].dot(&modes.shapes.column(0));
         let m_eff = 1.0 / station_shape.powi(2).max(1e-30);
-        let (resting, stiffness) = pad_kind(scenario, &beam, pad)?;
+        let (resting, stiffness) = pad_kind(scenario, beam, pad)?;
         if resting {
             reasons.push(format!("{} supports the arm under its weight (quasi-static)", pad.name));
             continue;
