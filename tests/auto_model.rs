@@ -1,7 +1,5 @@
 //! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
-//! contact force and peak tip deflection, and no cheaper fidelity is. (A friction-clamped string
-//! is referenced on eight modes: the clamp's staggered coupling diverges on the FE arm,
-//! docs/accuracy.md.)
+//! contact force and peak tip deflection, and no cheaper fidelity is.
 
 use std::path::{Path, PathBuf};
 
@@ -29,8 +27,7 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
     for path in shipped() {
         let s = Scenario::load(&path).unwrap();
         let chosen = s.fidelity().unwrap().fidelity;
-        let reference = if s.friction_clamp().is_some() { Fidelity::Modal { modes: 8 } } else { Fidelity::Fe };
-        let (fe, _) = run(&s, Some(reference)).unwrap();
+        let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
         let (auto, _) = run(&s, Some(chosen)).unwrap();
         let name = &s.spec.name;
         println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));

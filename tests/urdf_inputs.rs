@@ -99,6 +99,11 @@ fn malformed_urdf_is_named() {
         ),
         ("elements", Box::new(|t: String| t.replace("elements=\"24\"", "elements=\"0\"")), &["elements", "1 ..= 2000"]),
         (
+            "jaw-travel",
+            Box::new(|t: String| t.replacen("lower=\"-0.05\" upper=\"0.05\"", "lower=\"0.05\" upper=\"0.05\"", 1)),
+            &["joint[jaw_upper].limit", "lower < upper"],
+        ),
+        (
             "damping",
             Box::new(|t: String| t.replace("damping_ratios=\"0.01\"", "damping_ratios=\"abc\"")),
             &["damping_ratios", "not a list"],

@@ -119,6 +119,9 @@ pub enum Mount {
         axis: [f64; 3],
         /// Force the joint's actuator can give, N (the URDF limit's effort).
         effort_n: f64,
+        /// Travel allowed from where the jaw first touches the string, [lower, upper] along the
+        /// axis, m (the URDF limit's lower and upper).
+        travel_m: [f64; 2],
     },
 }
 

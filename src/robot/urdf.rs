@@ -222,8 +222,19 @@ impl Context<'_> {
                                 self.invalid(&key, "a prismatic joint needs a non-zero axis and limit effort > 0 (N)")
                             );
                         }
+                        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
+                        if !(lower.is_finite() && upper.is_finite() && lower < upper) {
+                            return Err(self.invalid(
+                                format!("{key}.limit"),
+                                format!("lower = {lower}, upper = {upper}: a prismatic joint needs lower < upper (m)"),
+                            ));
+                        }
                         let axis = axis.normalize();
-                        Mount::Prismatic { axis: [axis.x, axis.y, axis.z], effort_n: joint.limit.effort }
+                        Mount::Prismatic {
+                            axis: [axis.x, axis.y, axis.z],
+                            effort_n: joint.limit.effort,
+                            travel_m: [lower, upper],
+                        }
                     }
                     ref other => {
                         return Err(self.invalid(

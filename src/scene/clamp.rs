@@ -39,6 +39,10 @@ pub struct FrictionGrip {
     pub correction_force_n: [f64; 2],
     /// Squeeze per jaw, N.
     pub squeeze_n: f64,
+    /// Each jaw: its body, closing axis in the palm frame and half thickness along it (m).
+    jaws: Vec<(RigidBodyHandle, Vector, f64)>,
+    /// The string's outer radius, m.
+    radius_m: f64,
 }
 
 impl FrictionGrip {
@@ -55,6 +59,10 @@ impl FrictionGrip {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
         world.integration_parameters.dt = scenario.spec.time.step_s;
+        // rapier's contacts are soft (30 Hz by default): under the jaws' tens of kilonewtons on a
+        // 12 kg jaw that lets a jaw sink ≈ F / (m ω²) = 0.1 m — through the string (measured:
+        // the jaws met at its axis within 0.5 s). At 1 kHz the sinking is 0.1 mm.
+        world.integration_parameters.contact_softness = SpringCoefficients::new(1000.0, 10.0);
         let palm_body = world.insert_body(RigidBodyBuilder::kinematic_position_based().pose(palm_pose));
         // The string's centre in the palm's frame, and its turn along the arm.
         let string_centre = Vector::new(
@@ -68,14 +76,15 @@ impl FrictionGrip {
         world.insert_collider(collider, Some(string_body));
         let radius = 0.5 * string.pipe.outer_diameter_m;
         let mut squeeze_n = f64::INFINITY;
+        let mut jaws = Vec::new();
         for jaw in scenario.robot.carried.iter().filter(|b| b.mount.is_prismatic()) {
-            let Mount::Prismatic { axis, effort_n } = jaw.mount else { continue };
+            let Mount::Prismatic { axis, effort_n, travel_m } = jaw.mount else { continue };
             let n = clamp.squeeze_n.unwrap_or(effort_n);
             squeeze_n = squeeze_n.min(n);
             let closing = Vector::new(axis[0], axis[1], axis[2]);
             let at =
                 JawPlacement { palm_body, palm_pose, palm_station_m: palm.station_m, string_centre, radius_m: radius };
-            insert_jaw(&mut world, jaw, closing, n, &at, clamp.friction_coefficient);
+            jaws.push(insert_jaw(&mut world, jaw, closing, (n, travel_m), &at, clamp.friction_coefficient));
         }
         let mut grip = FrictionGrip {
             world,
@@ -88,9 +97,26 @@ impl FrictionGrip {
             slip_m: 0.0,
             correction_force_n: [0.0; 2],
             squeeze_n,
+            jaws,
+            radius_m: radius,
         };
         grip.initial_offset_m = grip.axial_offset();
         Ok(grip)
+    }
+
+    /// How deep the deepest jaw face has sunk into the string, m (its face's distance from the
+    /// string's axis short of the radius; 0 or less while the jaws only touch it).
+    pub fn jaw_sinking_m(&self) -> f64 {
+        let palm = *self.world.bodies[self.palm].position();
+        let string = palm.inverse() * *self.world.bodies[self.string].position();
+        self.jaws
+            .iter()
+            .map(|&(body, closing, half_thickness)| {
+                let jaw = palm.inverse() * *self.world.bodies[body].position();
+                let face_from_axis = (string.translation - jaw.translation).dot(closing).abs() - half_thickness;
+                self.radius_m - face_from_axis
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
     }
 
     /// String position along the arm axis relative to the palm, m.
@@ -140,10 +166,10 @@ fn insert_jaw(
     world: &mut PhysicsWorld,
     jaw: &CarriedBody,
     closing: Vector,
-    squeeze_n: f64,
+    (squeeze_n, travel_m): (f64, [f64; 2]),
     at: &JawPlacement,
     friction: f64,
-) {
+) -> (RigidBodyHandle, Vector, f64) {
     let half = match jaw.shapes.first().map(|s| s.shape) {
         Some(Shape::Box { half_extents_m }) => half_extents_m,
         _ => [0.05; 3],
@@ -160,6 +186,10 @@ fn insert_jaw(
         .local_anchor1(centre)
         .motor_model(MotorModel::ForceBased)
         .motor_velocity(0.05, 1e9)
-        .motor_max_force(squeeze_n);
+        .motor_max_force(squeeze_n)
+        // The URDF's travel, from the touching position: without it the two saturated motors'
+        // equal and opposite forces leave jaws and string free to drift across the arm together.
+        .limits(travel_m);
     world.insert_impulse_joint(at.palm_body, body, joint);
+    (body, closing, thickness)
 }
