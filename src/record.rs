@@ -152,9 +152,12 @@ impl Writer<'_> {
     fn scene(&self, layout: &SceneLayout, summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
         let rec = self.rec;
         rec.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
+        // Sized to the arm (15 × 10 m for the 9 m arm), so a lab arm is not lost on a rig's floor.
+        let l = layout.length_m as f32;
+        let half = (5.0 / 3.0 * l, 0.05 / 9.0 * l, 5.0 / 9.0 * l);
         rec.log_static(
             "world/ground",
-            &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -0.05, 0.0)], [(15.0, 0.05, 5.0)])
+            &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -half.1, 0.0)], [half])
                 .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
         )?;
         let magnify = magnification(summary, layout.length_m);
