@@ -137,3 +137,25 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
     let Err(SceneError::Diverged { advice, .. }) = run(&s, eight) else { panic!("explicit Euler must diverge") };
     assert!(advice.contains("generalized-alpha"), "{advice}");
 }
+
+#[test]
+fn the_rapier_pad_body_past_its_explicit_limit_is_stopped_and_the_advice_names_the_limit() {
+    let mut s = scenario("default");
+    s.spec.contact.method = pipearm::scenario::ContactMethod::Rapier;
+    // The shipped pad's law made linear with the damping of its restitution on the arm (what
+    // `pipearm bench` runs): the pad body's explicit limit is 82 µs.
+    let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.4e4 };
+    s.spec.dampeners[0].law = law;
+    s.spec.time.settle_s = 0.5;
+    let limit = law.explicit_body_limit_s(s.spec.contact.pad_mass_kg).unwrap();
+    assert!((limit - 8.2e-5).abs() < 1e-6, "{limit}");
+    s.spec.time.step_s = 1e-3;
+    let Err(SceneError::Diverged { what, advice, .. }) = run(&s, None) else { panic!("1 ms is 12 times the limit") };
+    println!("1 ms: {what}; {advice}");
+    assert!(what.contains("compressed") || what.contains("energy"), "{what}");
+    assert!(advice.contains("compliant") && advice.contains(&format!("{limit:.3e}")), "{advice}");
+    // The remedy the advice names: below the limit it runs.
+    s.spec.time.step_s = 0.75 * limit;
+    let (summary, _) = run(&s, None).expect("below the pad body's limit");
+    assert!(summary.pairs[0].peak_force_n > 0.0);
+}
