@@ -48,11 +48,10 @@ impl DivergenceGuard {
         2.0 * (self.fixed_budget_j + self.drive_work_j) + 10.0
     }
 
-    /// Checks a new sample (and any other value of the step, e.g. a slip); `Err` when the run
-    /// has diverged.
-    pub fn check(&mut self, s: &ArmSample, extra: &[(&str, f64)]) -> Result<(), Divergence> {
+    /// Checks a new sample; `Err` when the run has diverged.
+    pub fn check(&mut self, s: &ArmSample) -> Result<(), Divergence> {
         let divergence = |what: String| Divergence { t_s: s.t_s, what };
-        if let Some(bad) = non_finite(s, extra) {
+        if let Some(bad) = non_finite(s) {
             return Err(divergence(format!("{bad} is no longer finite")));
         }
         let power = drive_power_w(s);
@@ -74,7 +73,7 @@ fn drive_power_w(s: &ArmSample) -> f64 {
     (s.drive_torque_n_m * s.hub.rate_rad_s).abs()
 }
 
-fn non_finite(s: &ArmSample, extra: &[(&str, f64)]) -> Option<String> {
+fn non_finite(s: &ArmSample) -> Option<String> {
     if !s.q.iter().all(|v| v.is_finite()) {
         return Some("the elastic coordinate vector q".into());
     }
@@ -85,7 +84,7 @@ fn non_finite(s: &ArmSample, extra: &[(&str, f64)]) -> Option<String> {
         ("the kinetic energy", s.energies.kinetic_j),
         ("the strain energy", s.energies.strain_j),
     ];
-    named.iter().chain(extra).find(|(_, v)| !v.is_finite()).map(|(name, _)| name.to_string())
+    named.iter().find(|(_, v)| !v.is_finite()).map(|(name, _)| name.to_string())
 }
 
 /// What to do about a diverged run: a step that would be stable, or another integrator.

@@ -204,23 +204,8 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
         steps += 1;
         scene.step(step).map_err(|e| diverged_step(scenario, &scene, e))?;
         let sample = scene.arm.sample();
-        guard.check(&sample, &watched(&scene)).map_err(|d| divergence_error(scenario, &scene, d))?;
-        if let Some(pad) = scene.pads.iter().find(|p| p.compression_m > p.spec.thickness_m) {
-            let what = format!(
-                "pad {} is compressed {:.1} mm, beyond its {:.1} mm thickness",
-                pad.spec.name,
-                1e3 * pad.compression_m,
-                1e3 * pad.spec.thickness_m
-            );
-            return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
-        }
-        if let Some(sunk) = scene.grip.as_ref().map(|g| g.jaw_sinking_m()).filter(|&d| d > MAX_JAW_SINKING_M) {
-            let what = format!("the clamp's jaws sank {:.1} mm into the string", 1e3 * sunk);
-            return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
-        }
-        if let Some(grip) = scene.grip.as_ref().filter(|g| g.slip_m.abs() > string_length_m) {
-            let what =
-                format!("the string slid {:.3} m in the jaws, out of its {string_length_m:.2} m length", grip.slip_m);
+        guard.check(&sample).map_err(|d| divergence_error(scenario, &scene, d))?;
+        if let Some(what) = scene_fault(&scene, string_length_m) {
             return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
         }
         record(&scene, &sample, &mut series, &mut trackers);
@@ -274,10 +259,33 @@ fn gravity_span_j(scenario: &Scenario, scene: &Scene) -> Result<f64, SceneError>
     Ok(mass_kg * scenario.spec.physics.gravity_m_s2.abs() * 2.0 * (arm.length_m() + string_m))
 }
 
-/// Values of a step the guard watches besides the arm's.
-fn watched(scene: &Scene) -> Vec<(&'static str, f64)> {
-    let pads = scene.pads.iter().map(|p| ("a pad's contact force", p.force_n));
-    pads.chain(scene.grip.as_ref().map(|g| ("the string's slip", g.slip_m))).collect()
+/// What makes the scene's state meaningless though the arm's is not: a pad's force not finite or
+/// the pad crushed beyond its thickness, the clamp's jaws sunk into the string, the string out of
+/// the jaws.
+fn scene_fault(scene: &Scene, string_length_m: f64) -> Option<String> {
+    for pad in &scene.pads {
+        if !pad.force_n.is_finite() {
+            return Some(format!("pad {}'s contact force is no longer finite", pad.spec.name));
+        }
+        if pad.compression_m > pad.spec.thickness_m {
+            return Some(format!(
+                "pad {} is compressed {:.1} mm, beyond its {:.1} mm thickness",
+                pad.spec.name,
+                1e3 * pad.compression_m,
+                1e3 * pad.spec.thickness_m
+            ));
+        }
+    }
+    let grip = scene.grip.as_ref()?;
+    if !grip.slip_m.is_finite() {
+        Some("the string's slip is no longer finite".into())
+    } else if grip.jaw_sinking_m > MAX_JAW_SINKING_M {
+        Some(format!("the clamp's jaws sank {:.1} mm into the string", 1e3 * grip.jaw_sinking_m))
+    } else if grip.slip_m.abs() > string_length_m {
+        Some(format!("the string slid {:.3} m in the jaws, out of its {string_length_m:.2} m length", grip.slip_m))
+    } else {
+        None
+    }
 }
 
 /// A step that failed because the state blew up or Newton could not follow it is a divergence.
@@ -339,7 +347,7 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
     if let Some(grip) = &scene.grip {
         series.string_slip_m.push(grip.slip_m);
-        series.jaw_sinking_m.push(grip.jaw_sinking_m());
+        series.jaw_sinking_m.push(grip.jaw_sinking_m);
     }
     for ((pad, forces), tracker) in scene.pads.iter().zip(&mut series.pad_force_n).zip(trackers) {
         forces.push(pad.force_n);

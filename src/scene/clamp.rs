@@ -35,6 +35,9 @@ pub struct FrictionGrip {
     last_relative_velocity: Option<f64>,
     /// Slip of the string along the arm relative to the gripper, m (positive toward the tip).
     pub slip_m: f64,
+    /// How deep the deepest jaw face has sunk into the string, m (its face's distance from the
+    /// string's axis short of the radius; 0 or less while the jaws only touch it).
+    pub jaw_sinking_m: f64,
     /// Force the clamp puts on the arm beyond the lumped rigid clamp, world (X, Y), N.
     pub correction_force_n: [f64; 2],
     /// Squeeze per jaw, N.
@@ -95,6 +98,7 @@ impl FrictionGrip {
             initial_offset_m: 0.0,
             last_relative_velocity: None,
             slip_m: 0.0,
+            jaw_sinking_m: 0.0,
             correction_force_n: [0.0; 2],
             squeeze_n,
             jaws,
@@ -104,9 +108,8 @@ impl FrictionGrip {
         Ok(grip)
     }
 
-    /// How deep the deepest jaw face has sunk into the string, m (its face's distance from the
-    /// string's axis short of the radius; 0 or less while the jaws only touch it).
-    pub fn jaw_sinking_m(&self) -> f64 {
+    /// The jaws' sinking into the string now ([`Self::jaw_sinking_m`]), m.
+    fn measure_jaw_sinking_m(&self) -> f64 {
         let palm = *self.world.bodies[self.palm].position();
         let string = palm.inverse() * *self.world.bodies[self.string].position();
         self.jaws
@@ -140,6 +143,7 @@ impl FrictionGrip {
             self.world.step();
         }
         self.slip_m = self.axial_offset() - self.initial_offset_m;
+        self.jaw_sinking_m = self.measure_jaw_sinking_m();
         let palm = self.world.bodies[self.palm].position();
         let along = palm.rotation * Vector::X;
         let relative = (self.world.bodies[self.string].linvel() - self.world.bodies[self.palm].linvel()).dot(along);
