@@ -75,10 +75,12 @@ pub fn write_recording(
         std::fs::create_dir_all(dir).map_err(|source| RecordError::Io { path: shown.clone(), source })?;
     }
     let tmp = path.with_extension("rrd.tmp");
+    let file = std::fs::File::create(&tmp).map_err(|source| RecordError::Io { path: shown.clone(), source })?;
+    let sink = RrdWriter::new(file).map_err(|e| rerun_err(&e))?;
     let rec = rerun::RecordingStreamBuilder::new("pipearm")
         .recording_id(summary.scenario.clone())
         .with_blueprint(blueprint())
-        .save(&tmp)
+        .set_sinks(vec![Box::new(sink.clone()) as Box<dyn rerun::sink::LogSink>])
         .map_err(|e| rerun_err(&e))?;
     let writer = Writer { rec: &rec, series };
     writer.plots(pad_names).map_err(|e| rerun_err(&e))?;
@@ -91,7 +93,74 @@ pub fn write_recording(
         .map_err(|e| rerun_err(&e))?;
     rec.flush_blocking().map_err(|e| rerun_err(&e))?;
     drop(rec);
+    sink.finish().map_err(|e| rerun_err(&e))?;
     std::fs::rename(&tmp, path).map_err(|source| RecordError::Io { path: shown.clone(), source })
+}
+
+type RrdEncoder = rerun::external::re_log_encoding::Encoder<std::io::BufWriter<std::fs::File>>;
+
+/// A rerun sink that encodes on the logging thread, uncompressed: for a file of a few MB written
+/// once, rerun's `FileSink` (a writer thread and LZ4) cost as much as the simulation it records
+/// (docs/performance.md). The file is plain RRD with its footer; `rerun rrd optimize` compresses
+/// it if ever wanted.
+#[derive(Clone)]
+struct RrdWriter(std::sync::Arc<std::sync::Mutex<RrdWriterState>>);
+
+struct RrdWriterState {
+    encoder: Option<RrdEncoder>,
+    /// The first error, reported by [`RrdWriter::finish`] (a sink's `send` cannot fail).
+    error: Option<String>,
+}
+
+impl RrdWriter {
+    fn new(file: std::fs::File) -> Result<Self, String> {
+        use rerun::external::re_log_encoding::EncodingOptions;
+        let version = rerun::external::re_build_info::CrateVersion::LOCAL;
+        let writer = std::io::BufWriter::with_capacity(1 << 20, file);
+        let encoder = RrdEncoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, writer)
+            .map_err(|e| e.to_string())?;
+        Ok(RrdWriter(std::sync::Arc::new(std::sync::Mutex::new(RrdWriterState {
+            encoder: Some(encoder),
+            error: None,
+        }))))
+    }
+
+    fn with_state<T>(&self, f: impl FnOnce(&mut RrdWriterState) -> T) -> T {
+        let mut state = self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        f(&mut state)
+    }
+
+    /// Ends the stream and flushes the file; the first error of the whole recording, if any.
+    fn finish(&self) -> Result<(), String> {
+        self.with_state(|state| {
+            if let Some(error) = state.error.take() {
+                return Err(error);
+            }
+            let mut encoder = state.encoder.take().ok_or("the recording was already finished")?;
+            encoder.finish().map_err(|e| e.to_string())?;
+            let mut writer = encoder.into_inner().map_err(|e| e.to_string())?;
+            std::io::Write::flush(&mut writer).map_err(|e| e.to_string())
+        })
+    }
+}
+
+impl rerun::sink::LogSink for RrdWriter {
+    fn send(&self, msg: rerun::log::LogMsg) {
+        self.with_state(|state| {
+            if let Some(encoder) = state.encoder.as_mut()
+                && let Err(e) = encoder.append(&msg)
+            {
+                state.error.get_or_insert(e.to_string());
+            }
+        });
+    }
+
+    fn flush_blocking(&self, _timeout: std::time::Duration) -> Result<(), rerun::sink::SinkFlushError> {
+        self.with_state(|state| match state.encoder.as_mut().map(|e| e.flush_blocking()) {
+            Some(Err(e)) => Err(rerun::sink::SinkFlushError::failed(e.to_string())),
+            _ => Ok(()),
+        })
+    }
 }
 
 /// The view the file opens with: 3D scene left, force / tip deflection / torque right, events
@@ -136,9 +205,8 @@ impl Writer<'_> {
         for (k, name) in ["kinetic", "strain", "gravity"].iter().enumerate() {
             self.send(&format!("plots/energy/{name}"), s.energies_j.iter().map(|e| e[k]))?;
         }
-        let modes = s.modal_q.first().map_or(0, Vec::len);
-        for i in 0..modes {
-            self.send(&format!("plots/modal/q{}", i + 1), s.modal_q.iter().map(|q| q[i]))?;
+        for i in 0..s.modal_dofs {
+            self.send(&format!("plots/modal/q{}", i + 1), s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied())?;
         }
         if !s.string_slip_m.is_empty() {
             self.send("plots/string_slip", s.string_slip_m.iter().copied())?;

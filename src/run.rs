@@ -8,6 +8,7 @@ use crate::analysis::{Residual, StiffnessClass, residual};
 use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
+use crate::integrate::StepControl;
 use crate::scenario::Scenario;
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 
@@ -36,8 +37,11 @@ pub struct Series {
     pub jaw_sinking_m: Vec<f64>,
     /// Kinetic, strain and gravity energy, J.
     pub energies_j: Vec<[f64; 3]>,
-    /// Elastic coordinates q (modal and rigid models only; empty for fe).
-    pub modal_q: Vec<Vec<f64>>,
+    /// Elastic coordinates q (modal and rigid models only; empty for fe), `modal_dofs` per step
+    /// one step after another (one buffer, not a vector per step).
+    pub modal_q: Vec<f64>,
+    /// Elastic coordinates per step in `modal_q`.
+    pub modal_dofs: usize,
     /// Steps a recording keeps: every step in contact, the others at the record rate.
     pub keep: Vec<bool>,
     /// The scene for drawing at each kept step (when asked for).
@@ -172,7 +176,7 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, scenario.arm_options())?;
     let mut scene = Scene::with_arm(scenario, arm)?;
     let h = scenario.spec.time.step_s;
-    let free_h = scenario.spec.time.free_step_s.unwrap_or(h);
+    let control = free_step_control(scenario);
     let end = scenario.duration_s();
     let capacity = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
     let mut series = Series { pad_force_n: vec![Vec::with_capacity(capacity); scene.pads.len()], ..Series::default() };
@@ -197,12 +201,23 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
     // be a step too short to take.
     let sliver = 1e-6 * h;
+    // The free-motion step the error control proposes next (it restarts from `h` after contact).
+    let mut free_h = h;
     while end - scene.arm.time_s() > sliver {
         let remaining = end - scene.arm.time_s();
-        let wanted = if free_h > h && scene.free_step_allowed(free_h) { free_h } else { h };
-        let step = if remaining <= wanted + sliver { remaining } else { wanted };
+        let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
         steps += 1;
-        scene.step(step).map_err(|e| diverged_step(scenario, &scene, e))?;
+        match &control {
+            Some(control) if scene.free_step_allowed(free_h) => {
+                let (_, next) =
+                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(scenario, &scene, e))?;
+                free_h = next;
+            }
+            _ => {
+                scene.step(last_within(h)).map_err(|e| diverged_step(scenario, &scene, e))?;
+                free_h = h;
+            }
+        }
         let sample = scene.arm.sample();
         guard.check(&sample).map_err(|d| divergence_error(scenario, &scene, d))?;
         if let Some(what) = scene_fault(&scene, string_length_m) {
@@ -215,6 +230,16 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let mut summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
     Ok((summary, series))
+}
+
+/// The error control of free-motion steps, if the scenario asks for longer free steps.
+fn free_step_control(scenario: &Scenario) -> Option<StepControl> {
+    let t = &scenario.spec.time;
+    t.free_step_s.filter(|&free| free > t.step_s).map(|free| StepControl {
+        tolerance: t.tolerance_m.unwrap_or(crate::scenario::DEFAULT_TOLERANCE_M),
+        min_step_s: t.step_s,
+        max_step_s: free,
+    })
 }
 
 /// Decides which steps a recording keeps: every step in contact (and the one after), the
@@ -343,7 +368,8 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     series.drive_torque_n_m.push(s.drive_torque_n_m);
     series.energies_j.push([s.energies.kinetic_j, s.energies.strain_j, s.energies.gravity_j]);
     if scene.arm.arm.fidelity != Fidelity::Fe {
-        series.modal_q.push(s.q.as_slice().to_vec());
+        series.modal_dofs = s.q.len();
+        series.modal_q.extend_from_slice(s.q.as_slice());
     }
     if let Some(grip) = &scene.grip {
         series.string_slip_m.push(grip.slip_m);

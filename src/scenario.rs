@@ -261,18 +261,28 @@ pub enum DriveSpec {
     Hold { angle_deg: f64 },
 }
 
+/// Local error per controlled step allowed by default, m of tip displacement (docs/performance.md:
+/// chosen from measured errors against the converged reference).
+pub const DEFAULT_TOLERANCE_M: f64 = 1e-6;
+
 /// Time step and span.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TimeSpec {
     /// Step around contact (and everywhere without `free_step_s`), s.
     pub step_s: f64,
-    /// Step while no pad is within reach of the arm, s (default `step_s`). The scene predicts the
-    /// approach from each pad's clearance and the arm's speed and falls back to `step_s` before
-    /// a contact can begin; `compliant` contact with a rigid clamp only (the `rapier` pad body
-    /// and the friction clamp keep `step_s`).
+    /// Longest step while no pad is within reach of the arm, s (default: `step_s`, fixed steps).
+    /// In free motion the step is then controlled by the implicit integrator's local error
+    /// estimate (between `step_s` and this); the scene predicts the approach from each pad's
+    /// clearance and the arm's speed and falls back to `step_s` before a contact can begin.
+    /// `compliant` contact with a rigid clamp and an implicit integrator only (the `rapier` pad
+    /// body and the friction clamp keep `step_s`; the explicit methods estimate no error).
     #[serde(default)]
     pub free_step_s: Option<f64>,
+    /// Local error allowed per controlled step, as displacement of the arm's tip, m (default
+    /// [`DEFAULT_TOLERANCE_M`]; used with `free_step_s`).
+    #[serde(default)]
+    pub tolerance_m: Option<f64>,
     /// Time simulated after the drive ends, s.
     pub settle_s: f64,
 }
@@ -338,6 +348,24 @@ impl Scenario {
             return Err(self.invalid(
                 "time.free_step_s",
                 format!("{free} is outside step_s ({}) <= free_step_s <= 0.1", t.step_s),
+            ));
+        }
+        if let Some(tol) = t.tolerance_m {
+            if !(tol.is_finite() && tol > 0.0 && tol <= 1e-2) {
+                return Err(self.invalid("time.tolerance_m", format!("{tol} is outside 0 < tolerance_m <= 0.01")));
+            }
+            if t.free_step_s.is_none() {
+                return Err(self.invalid("time.tolerance_m", "controls free_step_s: set free_step_s (> step_s) too"));
+            }
+        }
+        if t.free_step_s.is_some() && spec.integrator.stability_limit_omega_dt().is_some() {
+            return Err(self.invalid(
+                "time.free_step_s",
+                format!(
+                    "needs an implicit integrator (generalized-alpha, hht, newmark with 2 beta >= gamma); {} estimates \
+                     no local error",
+                    spec.integrator.name()
+                ),
             ));
         }
         if !(t.settle_s.is_finite() && (0.0..=3600.0).contains(&t.settle_s)) {

@@ -37,9 +37,10 @@ fn drop(mass_kg: f64, v0: f64, law: ForceLaw, step_s: f64) -> Impact {
     let sys = DroppedMass { mass_kg, law, impact_speed_m_s: v0 };
     let mut s = State::consistent(&sys, 0.0, DVector::from_element(1, 0.0), DVector::from_element(1, v0)).unwrap();
     let mut peak: f64 = 0.0;
+    let mut rk4 = Rk4::default();
     loop {
         let before = (s.t, s.x[0], s.v[0]);
-        Rk4.step(&sys, &mut s, step_s).unwrap();
+        rk4.step(&sys, &mut s, step_s).unwrap();
         peak = peak.max(law.force_n(s.x[0], s.v[0], v0));
         if s.x[0] < 0.0 {
             // Interpolate the instant of separation.

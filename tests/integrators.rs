@@ -98,7 +98,7 @@ fn linear_acceleration_newmark_limit_is_2_sqrt_3() {
 
 #[test]
 fn rk4_limit_is_2_sqrt_2() {
-    let limit = stability_limit(&|| Box::new(Rk4), 2.0, 4.0);
+    let limit = stability_limit(&|| Box::new(Rk4::default()), 2.0, 4.0);
     println!("RK4: measured limit ωh = {limit:.5} (theory 2√2 = 2.82843)");
     assert!((limit / 8f64.sqrt() - 1.0).abs() < 0.02, "measured {limit}");
 }

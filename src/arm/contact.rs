@@ -37,8 +37,8 @@ pub struct PointContact {
 pub struct ArmContact {
     /// The contact.
     pub contact: PointContact,
-    /// Φᵀ N_u, Φᵀ N_v, Φᵀ N_φ at the station.
-    rows: [DVector<f64>; 3],
+    /// The contact point's hub-frame displacement rows: axial Φᵀ(N_u − y N_φ), transverse Φᵀ N_v.
+    point_rows: [DVector<f64>; 2],
 }
 
 /// A contact's state and generalized force at one configuration.
@@ -52,8 +52,9 @@ pub struct ContactState {
     pub force_n: f64,
     /// World point of application, m.
     pub point_m: [f64; 2],
-    /// ∂(generalized force)/∂F: the force per newton on q.
-    pub direction: DVector<f64>,
+    /// The normal in the hub frame: the generalized force per newton is
+    /// `normal_hub[0] · axial row + normal_hub[1] · transverse row` ([`ArmContact::direction`]).
+    pub normal_hub: [f64; 2],
     /// Moment about the pivot, N·m.
     pub moment_n_m: f64,
 }
@@ -61,8 +62,9 @@ pub struct ContactState {
 impl ArmModel {
     /// Projects a contact onto this model's coordinates.
     pub fn arm_contact(&self, contact: PointContact) -> ArmContact {
-        let rows = self.station_rows(contact.station_m).0;
-        ArmContact { contact, rows }
+        let [u, v, phi] = self.station_rows(contact.station_m).0;
+        let point_rows = [u - contact.lateral_m * phi, v];
+        ArmContact { contact, point_rows }
     }
 }
 
@@ -70,8 +72,7 @@ impl ArmContact {
     /// Contact point in the hub frame: (x + u − y φ, y + v), m.
     fn point_body(&self, q: &DVector<f64>) -> [f64; 2] {
         let c = &self.contact;
-        let [u, v, phi] = [&self.rows[0], &self.rows[1], &self.rows[2]].map(|r| r.dot(q));
-        [c.station_m + u - c.lateral_m * phi, c.lateral_m + v]
+        [c.station_m + self.point_rows[0].dot(q), c.lateral_m + self.point_rows[1].dot(q)]
     }
 
     /// Evaluates penetration, force and generalized force direction at (θ, θ̇, q, q̇).
@@ -83,14 +84,29 @@ impl ArmContact {
         let n = c.normal_world;
         // Normal in the hub frame, and the point's velocity along it.
         let nb = [co * n[0] + s * n[1], -s * n[0] + co * n[1]];
-        let direction = nb[0] * (&self.rows[0] - c.lateral_m * &self.rows[2]) + nb[1] * &self.rows[1];
         let spin = hub.rate_rad_s * (nb[1] * r[0] - nb[0] * r[1]);
         let depth_m =
             c.depth_m - (n[0] * (point_m[0] - c.reference_point_m[0]) + n[1] * (point_m[1] - c.reference_point_m[1]));
-        let rate_m_s = -(direction.dot(qd) + spin);
+        let rate_m_s = -(nb[0] * self.point_rows[0].dot(qd) + nb[1] * self.point_rows[1].dot(qd) + spin);
         let force_n = c.law.force_n(depth_m, rate_m_s, c.impact_speed_m_s);
         let moment_n_m = force_n * (point_m[0] * n[1] - point_m[1] * n[0]);
-        ContactState { depth_m, rate_m_s, force_n, point_m, direction, moment_n_m }
+        ContactState { depth_m, rate_m_s, force_n, point_m, normal_hub: nb, moment_n_m }
+    }
+
+    /// Adds `scale` × the generalized force per newton of the contact at `state` to `f`.
+    pub fn add_direction(&self, state: &ContactState, scale: f64, f: &mut [f64]) {
+        for (row, nb) in self.point_rows.iter().zip(state.normal_hub) {
+            for (fi, ri) in f.iter_mut().zip(row.iter()) {
+                *fi += scale * nb * ri;
+            }
+        }
+    }
+
+    /// The generalized force per newton of the contact at `state` (∂Q/∂F).
+    pub fn direction(&self, state: &ContactState) -> DVector<f64> {
+        let mut d = DVector::zeros(self.point_rows[0].len());
+        self.add_direction(state, 1.0, d.as_mut_slice());
+        d
     }
 
     /// (∂F/∂δ, ∂F/∂δ̇) at a state.

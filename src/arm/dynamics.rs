@@ -1,6 +1,6 @@
 //! The arm's equations of motion as a [`Dynamics`] system.
 
-use nalgebra::{DMatrix, DVector, DVectorViewMut};
+use nalgebra::{DMatrix, DVector};
 
 use super::{ArmContact, ArmModel, Energies};
 use crate::drive::{DriveState, MotionProfile};
@@ -71,22 +71,32 @@ impl ArmSystem<'_> {
     /// Adds the elastic generalized forces without the θ̈ term to `f` (allocation-free: it runs
     /// several times a step):
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
-    fn add_elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, f: &mut DVectorViewMut<f64>) {
+    fn add_elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, f: &mut [f64]) {
         let a = self.arm;
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, c) = hub.angle_rad.sin_cos();
-        f.gemv(-1.0, &a.damping, qd, 1.0);
-        f.gemv(-2.0 * w, &a.gyroscopic, qd, 1.0);
-        f.gemv(-1.0, &a.stiffness, q, 1.0);
-        f.gemv(w * w, &a.spin_mass, q, 1.0);
-        f.gemv(s, &a.gravity_stiffness, q, 1.0);
-        f.axpy(w * w, &a.axial_moment, 1.0);
-        f.axpy(-g * s, &a.axial_mass, 1.0);
-        f.axpy(-g * c, &a.transverse_mass, 1.0);
-        f.axpy(1.0, &self.load.modal, 1.0);
+        let n = f.len();
+        let (qs, qds) = (&q.as_slice()[..n], &qd.as_slice()[..n]);
+        // One pass over the five matrices, column by column (their storage order): −K_t q − C_t q̇.
+        let matrices = [&a.stiffness, &a.spin_mass, &a.gravity_stiffness, &a.damping, &a.gyroscopic];
+        let [k, spin, kg, d, gyro] = matrices.map(|m| m.as_slice());
+        for j in 0..n {
+            let column = j * n..(j + 1) * n;
+            let (k, spin, kg) = (&k[column.clone()], &spin[column.clone()], &kg[column.clone()]);
+            let (d, gyro) = (&d[column.clone()], &gyro[column]);
+            let (qj, qdj) = (qs[j], qds[j]);
+            for i in 0..n {
+                f[i] += (w * w * spin[i] + s * kg[i] - k[i]) * qj - (d[i] + 2.0 * w * gyro[i]) * qdj;
+            }
+        }
+        let vectors = [&a.axial_moment, &a.axial_mass, &a.transverse_mass, &self.load.modal];
+        let [moment, axial, transverse, load] = vectors.map(|v| &v.as_slice()[..n]);
+        for i in 0..n {
+            f[i] += w * w * moment[i] - g * s * axial[i] - g * c * transverse[i] + load[i];
+        }
         for contact in self.contacts {
             let state = contact.state(hub, q, qd);
-            f.axpy(state.force_n, &state.direction, 1.0);
+            contact.add_direction(&state, state.force_n, f);
         }
     }
 
@@ -179,16 +189,17 @@ impl Dynamics for ArmSystem<'_> {
                 let hub = profile.sample(t);
                 // −θ̈ S̃ = −θ̈ (S + C q).
                 f.copy_from(&self.arm.coupling);
-                f.gemv(1.0, &self.arm.gyroscopic, x, 1.0);
                 *f *= -hub.accel_rad_s2;
-                self.add_elastic_forces(&hub, x, v, &mut f.rows_mut(0, x.len()));
+                let f = f.as_mut_slice();
+                add_product(f, -hub.accel_rad_s2, &self.arm.gyroscopic, x.as_slice());
+                self.add_elastic_forces(&hub, x, v, f);
             }
             HubDrive::Free { torque_n_m } => {
                 let (hub, q, qd) = self.split(t, x, v);
                 f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
-                let mut elastic = f.rows_mut(1, q.len());
+                let elastic = &mut f.as_mut_slice()[1..];
                 elastic.fill(0.0);
-                self.add_elastic_forces(&hub, &q, &qd, &mut elastic);
+                self.add_elastic_forces(&hub, &q, &qd, elastic);
             }
         }
     }
@@ -210,18 +221,20 @@ impl Dynamics for ArmSystem<'_> {
         if let HubDrive::Prescribed(profile) = self.drive {
             // In place: this runs at every Newton iteration.
             let hub = profile.sample(t);
-            let (w, s) = (hub.rate_rad_s, hub.angle_rad.sin());
-            k.copy_from(&a.stiffness);
-            k.zip_apply(&a.spin_mass, |kij, wij| *kij -= w * w * wij);
-            k.zip_apply(&a.gravity_stiffness, |kij, gij| *kij -= s * gij);
-            k.zip_apply(&a.gyroscopic, |kij, cij| *kij += hub.accel_rad_s2 * cij);
-            c.copy_from(&a.damping);
-            c.zip_apply(&a.gyroscopic, |cij, gij| *cij += 2.0 * w * gij);
+            let (w, s, acc) = (hub.rate_rad_s, hub.angle_rad.sin(), hub.accel_rad_s2);
+            let (stiffness, spin) = (a.stiffness.as_slice(), a.spin_mass.as_slice());
+            let (gravity, gyroscopic, damping) =
+                (a.gravity_stiffness.as_slice(), a.gyroscopic.as_slice(), a.damping.as_slice());
+            for (i, (kij, cij)) in k.as_mut_slice().iter_mut().zip(c.as_mut_slice()).enumerate() {
+                *kij = stiffness[i] - w * w * spin[i] - s * gravity[i] + acc * gyroscopic[i];
+                *cij = damping[i] + 2.0 * w * gyroscopic[i];
+            }
             for contact in self.contacts {
                 let state = contact.state(&hub, x, v);
                 let (k_c, c_c) = contact.stiffness_damping(&state);
-                k.ger(k_c, &state.direction, &state.direction, 1.0);
-                c.ger(c_c, &state.direction, &state.direction, 1.0);
+                let direction = contact.direction(&state);
+                k.ger(k_c, &direction, &direction, 1.0);
+                c.ger(c_c, &direction, &direction, 1.0);
             }
             return;
         }
@@ -234,7 +247,8 @@ impl Dynamics for ArmSystem<'_> {
             let state = contact.state(&hub, &q, &qd);
             let (k_c, c_c) = contact.stiffness_damping(&state);
             if k_c != 0.0 || c_c != 0.0 {
-                let ww = &state.direction * state.direction.transpose();
+                let direction = contact.direction(&state);
+                let ww = &direction * direction.transpose();
                 k_qq += k_c * &ww;
                 c_qq += c_c * ww;
             }
@@ -261,12 +275,20 @@ impl Dynamics for ArmSystem<'_> {
     }
 }
 
-/// xᵀ A y without a temporary (these run every step on small matrices, where allocating the
-/// product costs more than forming it).
+// Plain loops over the column-major storage: these run several times a step on matrices of a
+// few rows, where nalgebra's general-size kernels spend more on set-up than on arithmetic.
+
+/// xᵀ A y for a square A.
 fn bilinear(a: &DMatrix<f64>, x: &DVector<f64>, y: &DVector<f64>) -> f64 {
-    let mut sum = 0.0;
-    for (j, yj) in y.iter().enumerate() {
-        sum += yj * a.column(j).dot(x);
+    let x = x.as_slice();
+    let columns = a.as_slice().chunks_exact(x.len().max(1));
+    columns.zip(y.iter()).map(|(column, yj)| yj * column.iter().zip(x).map(|(aij, xi)| aij * xi).sum::<f64>()).sum()
+}
+
+/// f += α A x for a square A.
+fn add_product(f: &mut [f64], alpha: f64, a: &DMatrix<f64>, x: &[f64]) {
+    for (column, xj) in a.as_slice().chunks_exact(f.len().max(1)).zip(x) {
+        let scale = alpha * xj;
+        f.iter_mut().zip(column).for_each(|(fi, aij)| *fi += scale * aij);
     }
-    sum
 }

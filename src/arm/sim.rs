@@ -6,7 +6,7 @@ use nalgebra::DVector;
 
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
 use crate::drive::DriveState;
-use crate::integrate::{Integrator, IntegratorKind, State};
+use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
 
 /// Energies of the arm, J.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -61,7 +61,11 @@ pub struct ArmSimulation {
     pub contacts: Vec<ArmContact>,
     integrator: Box<dyn Integrator>,
     state: State,
+    /// The state before a controlled step, to take it back.
+    saved: State,
     rate_jumps: Vec<(f64, f64)>,
+    /// Where the prescribed drive changes piece, s: controlled steps end there.
+    breakpoints_s: Vec<f64>,
 }
 
 impl ArmSimulation {
@@ -97,9 +101,9 @@ impl ArmSimulation {
             HubDrive::Prescribed(_) => (q0, qd0),
             HubDrive::Free { .. } => (prepend(0.0, &q0), prepend(0.0, &qd0)),
         };
-        let rate_jumps = match &drive {
-            HubDrive::Prescribed(p) => p.rate_jumps(),
-            HubDrive::Free { .. } => Vec::new(),
+        let (rate_jumps, breakpoints_s) = match &drive {
+            HubDrive::Prescribed(p) => (p.rate_jumps(), p.breakpoints_s()),
+            HubDrive::Free { .. } => (Vec::new(), Vec::new()),
         };
         let load = GeneralizedLoad::zero(n);
         let system = ArmSystem { arm: &arm, drive: &drive, load: &load, contacts: &[] };
@@ -110,8 +114,10 @@ impl ArmSimulation {
             drive,
             load,
             contacts: Vec::new(),
+            saved: state.clone(),
             state,
             rate_jumps,
+            breakpoints_s,
         };
         sim.apply_rate_jumps_up_to(0.0)?;
         Ok(sim)
@@ -153,6 +159,48 @@ impl ArmSimulation {
             return self.advance(t_end - self.state.t);
         }
         self.advance(h_s)
+    }
+
+    /// Advances by a step chosen by `control` from the integrator's local error estimate, at most
+    /// `h_s`: a step whose tip error exceeds the tolerance is taken again, shorter. Returns the
+    /// step taken and the step to try next, s. Without an error estimate (explicit methods) or
+    /// across a jump of the drive's rate, the step is taken as asked.
+    pub fn step_controlled(&mut self, h_s: f64, control: &StepControl) -> Result<(f64, f64), ArmError> {
+        let t = self.state.t;
+        let next_break = self.breakpoints_s.iter().copied().find(|&b| b > t + 1e-9 * h_s);
+        let mut h = match next_break {
+            Some(b) if b < t + h_s => b - t,
+            _ => h_s,
+        };
+        loop {
+            let t_end = self.state.t + h;
+            let crosses_jump = self.rate_jumps.first().is_some_and(|j| j.0 <= t_end);
+            self.saved.clone_from(&self.state);
+            self.integrator.checkpoint();
+            self.step(h)?;
+            let Some(error_m) = self.local_tip_error_m().filter(|_| !crosses_jump) else {
+                return Ok((h, h));
+            };
+            if control.accepts(h, error_m) {
+                return Ok((h, control.next_step_s(h, error_m)));
+            }
+            self.state.clone_from(&self.saved);
+            self.integrator.rollback();
+            h = control.next_step_s(h, error_m).min(h);
+        }
+    }
+
+    /// The integrator's estimate of the last step's local error, as displacement of the tip
+    /// (the larger of axial and transverse, the hub's error included for a free hub), m.
+    fn local_tip_error_m(&self) -> Option<f64> {
+        let error = self.integrator.local_error()?;
+        let [ru, rv, _] = self.arm.tip_rows();
+        let (hub_error_rad, q_error) = match self.drive {
+            HubDrive::Prescribed(_) => (0.0, error.as_slice()),
+            HubDrive::Free { .. } => (error[0], &error.as_slice()[1..]),
+        };
+        let dot = |row: &DVector<f64>| row.iter().zip(q_error).map(|(r, e)| r * e).sum::<f64>();
+        Some(dot(ru).abs().max((dot(rv) + self.arm.length_m() * hub_error_rad).abs()))
     }
 
     fn advance(&mut self, h: f64) -> Result<(), ArmError> {
@@ -247,13 +295,10 @@ impl ArmSimulation {
     pub fn sample(&self) -> ArmSample {
         let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
         let s = &self.state;
-        let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
+        let (hub, q, qd) = self.kinematics();
         let qdd = match self.drive {
-            HubDrive::Prescribed(_) => s.a.clone(),
-            HubDrive::Free { .. } => {
-                hub.accel_rad_s2 = s.a[0];
-                s.a.rows(1, q.len()).into_owned()
-            }
+            HubDrive::Prescribed(_) => Cow::Borrowed(&s.a),
+            HubDrive::Free { .. } => Cow::Owned(s.a.rows(1, q.len()).into_owned()),
         };
         let [ru, rv, _] = self.arm.tip_rows();
         let (u, v, ud, vd) = (ru.dot(&q), rv.dot(&q), ru.dot(&qd), rv.dot(&qd));
@@ -271,7 +316,7 @@ impl ArmSimulation {
             tip_velocity_world_m_s: [cs * vel_body[0] - sn * vel_body[1], sn * vel_body[0] + cs * vel_body[1]],
             drive_torque_n_m: system.drive_torque(&hub, &q, &qd, &qdd),
             energies: system.energies(&hub, &q, &qd),
-            q,
+            q: q.into_owned(),
         }
     }
 }

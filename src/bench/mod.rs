@@ -51,8 +51,12 @@ pub struct Variant {
     pub elements: Option<usize>,
     /// Time integrator.
     pub integrator: IntegratorKind,
-    /// Time step, s.
+    /// Time step (around contact, with `free_step_s`), s.
     pub step_s: f64,
+    /// Longest error-controlled step in free motion, s (`None`: fixed steps).
+    pub free_step_s: Option<f64>,
+    /// Local error tolerance of the controlled steps, m of tip displacement.
+    pub tolerance_m: Option<f64>,
     /// Contact method.
     pub contact: ContactMethod,
     /// Pad law made linear (the `rapier` method needs one; its compliant twin shares it).
@@ -71,6 +75,10 @@ impl Variant {
         // Steps to 4 significant digits: 0.15 ms, not the 0.15000000000005 a division leaves.
         let step_ms = format!("{:.4e}", 1e3 * self.step_s).parse::<f64>().unwrap_or(f64::NAN);
         let mut label = format!("{model} {} {step_ms}ms", self.integrator.name());
+        if let Some(free) = self.free_step_s {
+            let tolerance = self.tolerance_m.unwrap_or(crate::scenario::DEFAULT_TOLERANCE_M);
+            label += &format!(" free<={}ms tol {tolerance:.0e}m", 1e3 * free);
+        }
         if self.linear_pads {
             label += &format!(" {}", format!("{:?}", self.contact).to_lowercase());
         }
@@ -93,6 +101,8 @@ impl Variant {
         let mut s = base.clone();
         s.spec.integrator = self.integrator;
         s.spec.time.step_s = self.step_s;
+        s.spec.time.free_step_s = self.free_step_s;
+        s.spec.time.tolerance_m = self.tolerance_m;
         s.spec.contact.method = self.contact;
         if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
             *clamp = self.clamp;
@@ -236,6 +246,8 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
         elements: None,
         integrator: IntegratorKind::default(),
         step_s: h0,
+        free_step_s: None,
+        tolerance_m: None,
         contact: ContactMethod::Compliant,
         linear_pads: false,
         clamp: base_clamp.unwrap_or_default(),
@@ -255,6 +267,17 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
     for integrator in integrators() {
         let axis = format!("step: {}", integrator.name());
         out.extend(steps.iter().map(|&step_s| Variant { axis: axis.clone(), integrator, step_s, ..base.clone() }));
+    }
+    // Error-controlled free steps (up to 2–8× the scene's step) against the tolerance.
+    let (free_factors, tolerances) =
+        if quick { (vec![4.0], vec![1e-6]) } else { (vec![2.0, 4.0, 8.0], vec![1e-7, 1e-6, 1e-5]) };
+    for &factor in &free_factors {
+        out.extend(tolerances.iter().map(|&tol| Variant {
+            axis: "adaptive".into(),
+            free_step_s: Some(factor * h0),
+            tolerance_m: Some(tol),
+            ..base.clone()
+        }));
     }
     for fidelity in [Fidelity::Modal { modes: 1 }, Fidelity::Modal { modes: 8 }, Fidelity::Fe] {
         let axis = format!("step: {fidelity}");
@@ -412,6 +435,8 @@ pub fn reference(
         elements,
         integrator: IntegratorKind::default(),
         step_s,
+        free_step_s: None,
+        tolerance_m: None,
         clamp: Clamp::Rigid,
         ..physics_of.clone()
     };

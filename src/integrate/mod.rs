@@ -3,9 +3,12 @@
 //! The implicit family ([`GeneralizedAlpha`]: Chung–Hulbert generalized-α, HHT-α and Newmark)
 //! is the default; the explicit ones ([`SymplecticEuler`], [`Rk4`], [`ExplicitEuler`]) exist to
 //! compare cost and to show where they fail (`../shared/reference/integrators.md`). Steps are
-//! fixed here; the caller chooses them.
+//! chosen by the caller, fixed or controlled by the implicit methods' local error estimate
+//! ([`StepControl`]).
 
 mod alpha;
+mod control;
+mod dense;
 mod explicit;
 
 use nalgebra::{DMatrix, DVector};
@@ -13,6 +16,8 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use alpha::GeneralizedAlpha;
+pub use control::StepControl;
+pub(crate) use dense::{AccelerationSolver, solve_in_place};
 pub use explicit::{ExplicitEuler, Rk4, SymplecticEuler};
 
 /// A mechanical system in generalized coordinates: M(t, x) ẍ = f(t, x, ẋ).
@@ -155,6 +160,14 @@ pub trait Integrator: Send {
     fn step(&mut self, sys: &dyn Dynamics, state: &mut State, h: f64) -> Result<(), IntegrateError>;
     /// Forgets any history (call after an impulse changed the state from outside).
     fn reset(&mut self) {}
+    /// The leading term of the last step's local error in x, if the method estimates it.
+    fn local_error(&self) -> Option<&DVector<f64>> {
+        None
+    }
+    /// Remembers the method's history, so that a step can be taken back ([`Self::rollback`]).
+    fn checkpoint(&mut self) {}
+    /// Restores the history remembered by the last [`Self::checkpoint`].
+    fn rollback(&mut self) {}
 }
 
 /// The integrators a scenario can name, with their parameters.
@@ -216,7 +229,7 @@ impl IntegratorKind {
             IntegratorKind::Newmark { beta, gamma } => Box::new(GeneralizedAlpha::newmark(beta, gamma)?),
             IntegratorKind::Hht { alpha } => Box::new(GeneralizedAlpha::hht(alpha)?),
             IntegratorKind::SymplecticEuler => Box::new(SymplecticEuler),
-            IntegratorKind::Rk4 => Box::new(Rk4),
+            IntegratorKind::Rk4 => Box::new(Rk4::default()),
             IntegratorKind::ExplicitEuler => Box::new(ExplicitEuler),
         })
     }

@@ -25,6 +25,7 @@ use rapier3d_f64::prelude::*;
 
 use crate::arm::{ArmContact, ArmError, ArmSimulation, GeneralizedLoad, PointContact};
 use crate::drive::DriveState;
+use crate::integrate::StepControl;
 use crate::scenario::{ContactMethod, DampenerSpec, Face, PayloadSpec, Scenario, ScenarioError};
 pub use clamp::FrictionGrip;
 use geometry::{ArmPiece, pose_piece, shapes_of_robot};
@@ -427,6 +428,17 @@ impl Scene {
     /// staggered (the `rapier` pad body, a friction clamp) that needs the contact step.
     pub fn free_step_allowed(&self, free_step_s: f64) -> bool {
         self.method == ContactMethod::Compliant && self.grip.is_none() && !self.pad_within_reach(free_step_s)
+    }
+
+    /// A step of free motion of at most `h_s` under error `control` (call where
+    /// [`Self::free_step_allowed`] holds: no pad in reach, nothing else to step). Returns the step
+    /// taken and the next to try, s.
+    pub fn step_free(&mut self, h_s: f64, control: &StepControl) -> Result<(f64, f64), SceneError> {
+        self.arm.load = self.loads_from_rapier();
+        self.arm.contacts.clear();
+        let steps = self.arm.step_controlled(h_s, control)?;
+        self.measure_compliant_forces();
+        Ok(steps)
     }
 
     /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
