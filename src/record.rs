@@ -240,34 +240,33 @@ impl Writer<'_> {
         )?;
         let frames = &self.series.frames;
         let times = || rerun::TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
-        // Shapes are static; poses go in one column per entity (send_columns), not a log call
-        // per frame: that is what keeps the recording's cost small.
+        // One chunk per entity: shapes and poses go in the same columns (send_columns), not a
+        // log call per frame, nor a static chunk for the shapes beside the poses — rerun's cost
+        // is per chunk (encoding, footer manifest), the repeated half sizes are a few kB.
         for (name, indices) in group_pieces(layout) {
             let entity = format!("world/{name}");
-            rec.log_static(
-                entity.as_str(),
-                &rerun::Boxes3D::from_half_sizes(indices.iter().map(|&i| layout.pieces[i].1.map(|v| v as f32))),
-            )?;
+            let half_sizes = frames.iter().flat_map(|_| indices.iter().map(|&i| layout.pieces[i].1.map(|v| v as f32)));
             let centers = frames.iter().flat_map(|f| indices.iter().map(|&i| vec3(f.pieces[i].translation)));
             let quats = frames.iter().flat_map(|f| indices.iter().map(|&i| quat(f.pieces[i].rotation)));
             let columns = rerun::Boxes3D::update_fields()
+                .with_half_sizes(half_sizes.collect::<Vec<_>>())
                 .with_centers(centers.collect::<Vec<_>>())
                 .with_quaternions(quats.collect::<Vec<_>>())
                 .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
             rec.send_columns(entity.as_str(), [times()], columns)?;
         }
-        rec.log_static(
-            "world/pads",
-            &rerun::Boxes3D::from_half_sizes(layout.pads.iter().map(|p| p.1.map(|v| v as f32)))
-                .with_labels(layout.pads.iter().map(|p| p.0.clone()))
-                .with_colors([rerun::Color::from_rgb(40, 40, 40)])
-                .with_fill_mode(rerun::FillMode::Solid),
-        )?;
+        let pads = || frames.iter().flat_map(|f| f.pads.iter().zip(&layout.pads));
         let columns = rerun::Boxes3D::update_fields()
-            .with_centers(frames.iter().flat_map(|f| f.pads.iter().map(|p| vec3(p.translation))).collect::<Vec<_>>())
-            .with_quaternions(frames.iter().flat_map(|f| f.pads.iter().map(|p| quat(p.rotation))).collect::<Vec<_>>())
+            .with_half_sizes(pads().map(|(_, p)| p.1.map(|v| v as f32)).collect::<Vec<_>>())
+            .with_labels(pads().map(|(_, p)| p.0.clone()).collect::<Vec<_>>())
+            .with_colors(pads().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
+            .with_centers(pads().map(|(pose, _)| vec3(pose.translation)).collect::<Vec<_>>())
+            .with_quaternions(pads().map(|(pose, _)| quat(pose.rotation)).collect::<Vec<_>>())
             .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))?;
-        rec.send_columns("world/pads", [times()], columns)?;
+        // The fill mode is one value per row, not per box: its own partition, the same chunk.
+        let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
+        let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
+        rec.send_columns("world/pads", [times()], columns.chain(fill))?;
         let strips: Vec<Vec<[f32; 3]>> = frames.iter().map(|f| centreline_points(layout, f, magnify)).collect();
         let columns =
             rerun::LineStrips3D::update_fields().with_strips(strips).columns(std::iter::repeat_n(1, frames.len()))?;
@@ -278,11 +277,9 @@ impl Writer<'_> {
             .iter()
             .flat_map(|f| f.contacts.iter().map(|c| [(c.2[0] / scale) as f32, (c.2[1] / scale) as f32, 0.0]))
             .collect();
-        rec.log_static(
-            arrows.as_str(),
-            &rerun::Arrows3D::update_fields().with_colors([rerun::Color::from_rgb(220, 40, 40)]),
-        )?;
+        let red = std::iter::repeat_n(rerun::Color::from_rgb(220, 40, 40), origins.len()).collect::<Vec<_>>();
         let columns = rerun::Arrows3D::update_fields()
+            .with_colors(red)
             .with_origins(origins)
             .with_vectors(vectors)
             .columns(frames.iter().map(|f| f.contacts.len()))?;

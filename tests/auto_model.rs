@@ -25,7 +25,13 @@ fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
 #[test]
 fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
     for path in shipped() {
-        let s = Scenario::load(&path).unwrap();
+        let mut s = Scenario::load(&path).unwrap();
+        // The models are compared under one unconditionally stable integrator: the FE arm's
+        // highest mode is far beyond an explicit method's limit at the scene's step (the default
+        // scene's RK4 is chosen for its three modes).
+        if s.spec.integrator.stability_limit_omega_dt().is_some() {
+            s.spec.integrator = pipearm::integrate::IntegratorKind::default();
+        }
         let chosen = s.fidelity().unwrap().fidelity;
         let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
         let (auto, _) = run(&s, Some(chosen)).unwrap();

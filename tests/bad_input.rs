@@ -90,18 +90,29 @@ fn load_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn scenario_errors_name_file_key_and_range() {
-    let m = load_error("unknown", |t| t.replace("step_s = 0.002", "step_s = 0.002\nstep_count = 3"));
+    let m = load_error("unknown", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\nstep_count = 3"));
     assert!(m.contains("step_count"), "{m}");
-    let m = load_error("missing", |t| t.replace("step_s = 0.002\n", ""));
+    let m = load_error("missing", |t| t.replace("step_s = 0.0025\n", ""));
     assert!(m.contains("step_s"), "{m}");
-    let m = load_error("negative-step", |t| t.replace("step_s = 0.002", "step_s = -0.002"));
+    let m = load_error("negative-step", |t| t.replace("step_s = 0.0025", "step_s = -0.0025"));
     assert!(m.contains("time.step_s") && m.contains("0 < step_s"), "{m}");
     let m = load_error("accel", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.9"));
     assert!(m.contains("drive.ramp_fraction"), "{m}");
     let m = load_error("both-limits", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.2\naccel_deg_s2 = 3.0"));
     assert!(m.contains("drive.limit") && m.contains("exactly one"), "{m}");
-    let m = load_error("integrator", |t| t.replace("rho_inf = 0.8", "rho_inf = 1.5"));
+    let generalized_alpha = |rho: &str| format!("method = \"generalized-alpha\"\nrho_inf = {rho}");
+    let m = load_error("integrator", |t| t.replace("method = \"rk4\"", &generalized_alpha("1.5")));
     assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
+    // Controlled free steps: a tolerance needs a free step, a free step an implicit method.
+    let m = load_error("tolerance", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\ntolerance_m = 1e-6"));
+    assert!(m.contains("time.tolerance_m") && m.contains("free_step_s"), "{m}");
+    let m = load_error("free-explicit", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\nfree_step_s = 0.01"));
+    assert!(m.contains("time.free_step_s") && m.contains("implicit"), "{m}");
+    let m = load_error("bad-tolerance", |t| {
+        t.replace("method = \"rk4\"", &generalized_alpha("0.8"))
+            .replace("step_s = 0.0025", "step_s = 0.0025\nfree_step_s = 0.01\ntolerance_m = -1.0")
+    });
+    assert!(m.contains("time.tolerance_m") && m.contains("0 < tolerance_m"), "{m}");
     let m = load_error("modes", |t| t.replace("kind = \"auto\"", "kind = \"modal\"\nmodes = 500"));
     assert!(m.contains("model.modes") && m.contains("1 ..= 72"), "{m}");
     let m = load_error("beyond-limit", |t| t.replace("end_deg = 90.0", "end_deg = 120.0"));

@@ -126,7 +126,11 @@ fn pipearm_check_prints_a_failing_row_and_exits_non_zero() {
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(!output.status.success());
     let row = stdout.lines().find(|l| l.contains("peak_force_n")).unwrap_or_default();
-    assert!(row.contains("FAIL") && row.contains("1494.589"), "{stdout}");
+    // The row shows the blessed value it failed against.
+    let baseline = std::fs::read_to_string(manifest().join("tests/baselines/default.toml")).unwrap();
+    let blessed = baseline.lines().skip_while(|l| !l.contains("peak_force_n")).find(|l| l.starts_with("value"));
+    let blessed: f64 = blessed.and_then(|l| l.split('=').nth(1)).and_then(|v| v.trim().parse().ok()).unwrap();
+    assert!(row.contains("FAIL") && row.contains(&format!("{blessed:.6}")), "{stdout}");
 }
 
 #[test]

@@ -102,10 +102,21 @@ impl ArmSystem<'_> {
 
     /// Hub generalized force without inertia: τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment.
     fn hub_force(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, applied_n_m: f64) -> f64 {
+        self.hub_force_at(hub, hub.angle_rad.sin_cos(), q, qd, applied_n_m)
+    }
+
+    /// [`Self::hub_force`] with the hub angle's (sin, cos) given.
+    fn hub_force_at(
+        &self,
+        hub: &DriveState,
+        (s, c): (f64, f64),
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        applied_n_m: f64,
+    ) -> f64 {
         let a = self.arm;
         let g = a.options.gravity_m_s2;
-        let (s, c) = hub.angle_rad.sin_cos();
-        let spin = 2.0 * hub.rate_rad_s * (a.axial_moment.dot(qd) + bilinear(&a.spin_mass, qd, q));
+        let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd) + bilinear(&a.spin_mass, qd, q));
         let contact: f64 = self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum();
         applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
     }
@@ -115,13 +126,13 @@ impl ArmSystem<'_> {
         let a = self.arm;
         // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
         let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
-        -g * c * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * s * a.transverse_mass.dot(q) + foreshortening
+        -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q)) + g * s * dot(&a.transverse_mass, q) + foreshortening
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
     fn pivot_inertia(&self, q: &DVector<f64>) -> f64 {
         let a = self.arm;
-        a.pivot_inertia_kg_m2 + 2.0 * a.axial_moment.dot(q) + bilinear(&a.spin_mass, q, q)
+        a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q) + bilinear(&a.spin_mass, q, q)
     }
 
     /// S̃ = S + C q.
@@ -131,31 +142,67 @@ impl ArmSystem<'_> {
 
     /// S̃ · y = S·y + (C q)·y, without forming S̃.
     fn coupling_dot(&self, q: &DVector<f64>, y: &DVector<f64>) -> f64 {
-        self.arm.coupling.dot(y) + bilinear(&self.arm.gyroscopic, y, q)
+        dot(&self.arm.coupling, y) + bilinear(&self.arm.gyroscopic, y, q)
     }
 
     /// Kinetic, strain and gravity energy at (hub, q, q̇), J.
     pub fn energies(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> Energies {
+        let inertia = self.pivot_inertia(q);
+        self.energies_at(hub, hub.angle_rad.sin_cos(), inertia, q, qd)
+    }
+
+    /// [`Self::energies`] with the hub angle's (sin, cos) and Ĵ(q) given.
+    fn energies_at(
+        &self,
+        hub: &DriveState,
+        (s, c): (f64, f64),
+        pivot_inertia: f64,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> Energies {
         let a = self.arm;
         let w = hub.rate_rad_s;
-        let kinetic_j =
-            0.5 * w * w * self.pivot_inertia(q) + w * self.coupling_dot(q, qd) + 0.5 * bilinear(&a.mass, qd, qd);
-        let (s, c) = hub.angle_rad.sin_cos();
+        let kinetic_j = 0.5 * w * w * pivot_inertia + w * self.coupling_dot(q, qd) + 0.5 * bilinear(&a.mass, qd, qd);
         let g = a.options.gravity_m_s2;
-        let gravity_j = g * s * (a.first_moment_kg_m + a.axial_mass.dot(q)) + g * c * a.transverse_mass.dot(q)
+        let gravity_j = g * s * (a.first_moment_kg_m + dot(&a.axial_mass, q)) + g * c * dot(&a.transverse_mass, q)
             - 0.5 * s * bilinear(&a.gravity_stiffness, q, q);
         Energies { kinetic_j, strain_j: 0.5 * bilinear(&a.stiffness, q, q), gravity_j }
     }
 
     /// Torque the drive applies to realize the hub motion, given q̈, N·m.
     pub fn drive_torque(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, qdd: &DVector<f64>) -> f64 {
+        self.drive_torque_at(hub, hub.angle_rad.sin_cos(), self.pivot_inertia(q), q, qd, qdd)
+    }
+
+    fn drive_torque_at(
+        &self,
+        hub: &DriveState,
+        trig: (f64, f64),
+        pivot_inertia: f64,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+    ) -> f64 {
         match self.drive {
             HubDrive::Free { torque_n_m } => *torque_n_m,
             HubDrive::Prescribed(_) => {
-                let inertia = self.pivot_inertia(q) * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
-                inertia - self.hub_force(hub, q, qd, 0.0)
+                let inertia = pivot_inertia * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
+                inertia - self.hub_force_at(hub, trig, q, qd, 0.0)
             }
         }
+    }
+
+    /// Drive torque (N·m) and energies (J) together: what every step records, sharing the hub's
+    /// trigonometry and Ĵ(q).
+    pub fn torque_and_energies(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        qdd: &DVector<f64>,
+    ) -> (f64, Energies) {
+        let (trig, inertia) = (hub.angle_rad.sin_cos(), self.pivot_inertia(q));
+        (self.drive_torque_at(hub, trig, inertia, q, qd, qdd), self.energies_at(hub, trig, inertia, q, qd))
     }
 }
 
@@ -262,11 +309,11 @@ impl Dynamics for ArmSystem<'_> {
         k.view_mut((1, 0), (n, 1)).copy_from(&k_q_theta);
         let c_q_theta = 2.0 * (&a.gyroscopic * &qd) - 2.0 * w * &spin_arm;
         c.view_mut((1, 0), (n, 1)).copy_from(&c_q_theta);
-        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + a.axial_mass.dot(&q)) + g * co * a.transverse_mass.dot(&q)
-            - 0.5 * s * q.dot(&kg_q));
+        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + dot(&a.axial_mass, &q)) + g * co * dot(&a.transverse_mass, &q)
+            - 0.5 * s * dot(&q, &kg_q));
         let k_theta_q = 2.0 * w * (&a.spin_mass * &qd) + co * (g * &a.axial_mass - &kg_q) - g * s * &a.transverse_mass;
         k.view_mut((0, 1), (1, n)).copy_from(&k_theta_q.transpose());
-        c[(0, 0)] = 2.0 * spin_arm.dot(&qd);
+        c[(0, 0)] = 2.0 * dot(&spin_arm, &qd);
         c.view_mut((0, 1), (1, n)).copy_from(&(2.0 * w * spin_arm).transpose());
     }
 
@@ -277,6 +324,11 @@ impl Dynamics for ArmSystem<'_> {
 
 // Plain loops over the column-major storage: these run several times a step on matrices of a
 // few rows, where nalgebra's general-size kernels spend more on set-up than on arithmetic.
+
+/// xᵀ y.
+fn dot(x: &DVector<f64>, y: &DVector<f64>) -> f64 {
+    x.as_slice().iter().zip(y.as_slice()).map(|(a, b)| a * b).sum()
+}
 
 /// xᵀ A y for a square A.
 fn bilinear(a: &DMatrix<f64>, x: &DVector<f64>, y: &DVector<f64>) -> f64 {

@@ -99,7 +99,9 @@ pub struct StationRows(pub [DVector<f64>; 3]);
 impl StationRows {
     /// [u (m), v (m), φ (rad)] at `q`.
     pub fn displacement(&self, q: &DVector<f64>) -> [f64; 3] {
-        [self.0[0].dot(q), self.0[1].dot(q), self.0[2].dot(q)]
+        // Slices: a few coordinates, called per shape per step.
+        let q = q.as_slice();
+        self.0.each_ref().map(|row| row.as_slice().iter().zip(q).map(|(r, x)| r * x).sum())
     }
 }
 

@@ -301,12 +301,14 @@ impl ArmSimulation {
             HubDrive::Free { .. } => Cow::Owned(s.a.rows(1, q.len()).into_owned()),
         };
         let [ru, rv, _] = self.arm.tip_rows();
-        let (u, v, ud, vd) = (ru.dot(&q), rv.dot(&q), ru.dot(&qd), rv.dot(&qd));
+        let dot = |row: &DVector<f64>, x: &DVector<f64>| row.iter().zip(x.iter()).map(|(r, x)| r * x).sum::<f64>();
+        let (u, v, ud, vd) = (dot(ru, &q), dot(rv, &q), dot(ru, &qd), dot(rv, &qd));
         let l = self.arm.length_m();
         let (sn, cs) = hub.angle_rad.sin_cos();
         let w = hub.rate_rad_s;
         // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
         let vel_body = [ud - w * v, vd + w * (l + u)];
+        let (drive_torque_n_m, energies) = system.torque_and_energies(&hub, &q, &qd, &qdd);
         ArmSample {
             t_s: s.t,
             hub,
@@ -314,8 +316,8 @@ impl ArmSimulation {
             tip_velocity_hub_m_s: [ud, vd],
             tip_position_world_m: [cs * (l + u) - sn * v, sn * (l + u) + cs * v],
             tip_velocity_world_m_s: [cs * vel_body[0] - sn * vel_body[1], sn * vel_body[0] + cs * vel_body[1]],
-            drive_torque_n_m: system.drive_torque(&hub, &q, &qd, &qdd),
-            energies: system.energies(&hub, &q, &qd),
+            drive_torque_n_m,
+            energies,
             q: q.into_owned(),
         }
     }

@@ -244,7 +244,7 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
         axis: "fidelity".into(),
         fidelity: auto,
         elements: None,
-        integrator: IntegratorKind::default(),
+        integrator: scenario.spec.integrator,
         step_s: h0,
         free_step_s: None,
         tolerance_m: None,
@@ -274,6 +274,8 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
     for &factor in &free_factors {
         out.extend(tolerances.iter().map(|&tol| Variant {
             axis: "adaptive".into(),
+            // The error estimate is the implicit methods'.
+            integrator: IntegratorKind::default(),
             free_step_s: Some(factor * h0),
             tolerance_m: Some(tol),
             ..base.clone()

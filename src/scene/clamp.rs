@@ -10,8 +10,8 @@
 //! effective mass at the gripper (the added-mass trap); this one only lags the slip.
 //!
 //! The clamp has a rapier world of its own (a kinematic palm, the jaws, the string): calling
-//! `detect_collisions` on a world, as the `compliant` pads need every step, stops rapier 0.36
-//! from moving that world's dynamic bodies in later steps.
+//! `detect_collisions` on a world, as the `compliant` pads once did every step (they now query
+//! parry directly), stops rapier 0.36 from moving that world's dynamic bodies in later steps.
 
 use rapier3d_f64::prelude::*;
 

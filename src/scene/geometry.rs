@@ -70,10 +70,9 @@ impl ArmPiece {
         }
     }
 
-    /// Station and body-y of a world point on this piece (the piece moves rigidly with the
-    /// section at its station).
-    pub fn station_of(&self, collider: &Collider, world: [f64; 3]) -> (f64, f64) {
-        let pose = collider.position();
+    /// Station and body-y of a world point on this piece posed at `pose` (the piece moves
+    /// rigidly with the section at its station).
+    pub fn station_of(&self, pose: &Pose, world: [f64; 3]) -> (f64, f64) {
         let local = pose.rotation.inverse() * (Vector::new(world[0], world[1], world[2]) - pose.translation);
         // Back into the section frame: undo the piece's own rotation.
         let section = self.local_rotation * local;

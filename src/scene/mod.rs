@@ -7,8 +7,8 @@
 //!
 //! One step, top to bottom:
 //! 1. pose every kinematic shape from the arm's state;
-//! 2. `compliant`: rapier's narrow phase finds, per pad, the deepest point of the arm within
-//!    reach; it becomes a [`PointContact`] whose force law the implicit arm step evaluates on the
+//! 2. `compliant`: parry's contact query on the rapier colliders finds, per pad, the deepest
+//!    point of the arm within reach; it becomes a [`PointContact`] whose force law the implicit arm step evaluates on the
 //!    arm's configuration at the end of the step (no staggering, no added-mass trap);
 //!    `rapier`: the last rapier step's contact impulse / dt is applied to the arm as a load;
 //! 3. advance the arm;
@@ -443,14 +443,11 @@ impl Scene {
 
     /// Per pad, the deepest point of the arm within reach, as contacts for the implicit step.
     fn compliant_contacts(&mut self, h_s: f64) -> Vec<ArmContact> {
-        // rapier's narrow phase is most of a step's cost: skip it while every pad is out of
-        // reach.
+        // Contact queries are most of a step's cost: skip them while every pad is out of reach.
         if !self.pad_within_reach(h_s) {
             return Vec::new();
         }
         let reach = self.contact_reach(h_s);
-        self.pose_pieces(false);
-        self.world.detect_collisions(&(), &());
         (0..self.pads.len()).filter_map(|i| self.deepest_point(i, reach)).collect()
     }
 
@@ -511,29 +508,29 @@ impl Scene {
         hub.rate_rad_s.abs() * (self.arm.arm.length_m() + 1.0) + ru.dot(&qd).hypot(rv.dot(&qd))
     }
 
-    /// The deepest point of the arm against pad `i`, within `reach` of touching.
+    /// The deepest point of the arm against pad `i`, within `reach` of touching: parry's contact
+    /// query between the pad's collider and each shape that can reach it, posed from the arm's
+    /// state. (rapier's `detect_collisions` gave the same points through its broad phase and
+    /// manifolds at 27 000 instructions a call, against a few hundred per query here.)
     fn deepest_point(&mut self, i: usize, reach: f64) -> Option<ArmContact> {
         let pad = &self.pads[i];
-        let mut best: Option<(f64, [f64; 3], &ArmPiece)> = None;
-        for piece in &self.pieces {
-            let Some(pair) = self.world.narrow_phase.contact_pair(piece.collider, pad.collider) else { continue };
-            for manifold in pair.manifolds() {
-                let arm_is_first = pair.collider1 == piece.collider;
-                let arm_collider = &self.world.colliders[piece.collider];
-                for point in &manifold.points {
-                    if point.dist > reach {
-                        continue;
-                    }
-                    let local = if arm_is_first { point.local_p1 } else { point.local_p2 };
-                    let world = arm_collider.position() * local;
-                    if best.as_ref().is_none_or(|b| point.dist < b.0) {
-                        best = Some((point.dist, [world.x, world.y, world.z], piece));
-                    }
-                }
+        let pad_collider = &self.world.colliders[pad.collider];
+        let (hub, q, _) = self.arm.kinematics();
+        let mut best: Option<(f64, Vector, &ArmPiece, Pose)> = None;
+        for piece in self.pieces.iter().filter(|p| p.near_pad) {
+            let pose = pose_piece(piece, &hub, &q, self.pivot_m);
+            let shape = self.world.colliders[piece.collider].shape();
+            let found = parry3d_f64::query::contact(&pose, shape, pad_collider.position(), pad_collider.shape(), reach);
+            if let Ok(Some(contact)) = found
+                && contact.dist <= reach
+                && best.as_ref().is_none_or(|b| contact.dist < b.0)
+            {
+                best = Some((contact.dist, contact.point1, piece, pose));
             }
         }
-        let (dist, world, piece) = best?;
-        let (station_m, lateral_m) = piece.station_of(&self.world.colliders[piece.collider], world);
+        let (dist, world, piece, pose) = best?;
+        let world = [world.x, world.y, world.z];
+        let (station_m, lateral_m) = piece.station_of(&pose, world);
         let name = piece.name.clone();
         let point = PointContact {
             pair: i,
@@ -598,7 +595,7 @@ impl Scene {
                     })
                     .unwrap_or(arm_collider.translation());
                 // The force acts on the arm's section at the point's station.
-                let (station, _) = piece.station_of(arm_collider, [point.x, point.y, point.z]);
+                let (station, _) = piece.station_of(arm_collider.position(), [point.x, point.y, point.z]);
                 pad.force_n += force;
                 pad.point_m = [point.x - self.pivot_m[0], point.y - self.pivot_m[1]];
                 pad.touching = Some(piece.name.clone());
