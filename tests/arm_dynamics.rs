@@ -97,7 +97,7 @@ fn angular_momentum(sim: &ArmSimulation) -> f64 {
 
 fn kinetic(sim: &ArmSimulation, state: &pipearm::integrate::State) -> f64 {
     let load = GeneralizedLoad::zero(sim.arm.elastic_dofs());
-    let system = pipearm::arm::ArmSystem { arm: &sim.arm, drive: &sim.drive, load: &load, contacts: &[] };
+    let system = pipearm::arm::ArmSystem::new(&sim.arm, &sim.drive, &load, &[]);
     let (hub, q, qd) = system.split(state.t, &state.x, &state.v);
     system.energies(&hub, &q, &qd).kinetic_j
 }

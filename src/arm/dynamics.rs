@@ -1,5 +1,7 @@
 //! The arm's equations of motion as a [`Dynamics`] system.
 
+use std::cell::Cell;
+
 use nalgebra::{DMatrix, DVector};
 
 use super::{ArmContact, ArmModel, Energies};
@@ -47,9 +49,33 @@ pub struct ArmSystem<'a> {
     pub load: &'a GeneralizedLoad,
     /// Pad contacts, evaluated on the current configuration.
     pub contacts: &'a [ArmContact],
+    /// The prescribed hub at the last time asked, with (sin, cos) of its angle: RK4 asks twice
+    /// at the half step, and its last stage and the end-of-step acceleration at the same time.
+    hub_cache: Cell<Option<HubAt>>,
 }
 
-impl ArmSystem<'_> {
+/// A prescribed hub's state at a time (s) with (sin, cos) of its angle.
+type HubAt = (f64, DriveState, (f64, f64));
+
+impl<'a> ArmSystem<'a> {
+    /// The arm under its drive, loads and contacts.
+    pub fn new(arm: &'a ArmModel, drive: &'a HubDrive, load: &'a GeneralizedLoad, contacts: &'a [ArmContact]) -> Self {
+        ArmSystem { arm, drive, load, contacts, hub_cache: Cell::new(None) }
+    }
+
+    /// The prescribed hub at `t` and (sin, cos) of its angle.
+    fn prescribed_hub(&self, profile: &MotionProfile, t: f64) -> (DriveState, (f64, f64)) {
+        if let Some((cached_t, hub, trig)) = self.hub_cache.get()
+            && cached_t == t
+        {
+            return (hub, trig);
+        }
+        let hub = profile.sample(t);
+        let trig = hub.angle_rad.sin_cos();
+        self.hub_cache.set(Some((t, hub, trig)));
+        (hub, trig)
+    }
+
     /// Splits integrator coordinates into hub state and q (for a free hub the hub's
     /// acceleration is unknown here and reported as 0).
     pub fn split<'v>(
@@ -71,10 +97,16 @@ impl ArmSystem<'_> {
     /// Adds the elastic generalized forces without the θ̈ term to `f` (allocation-free: it runs
     /// several times a step):
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
-    fn add_elastic_forces(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, f: &mut [f64]) {
+    fn add_elastic_forces(
+        &self,
+        hub: &DriveState,
+        (s, c): (f64, f64),
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        f: &mut [f64],
+    ) {
         let a = self.arm;
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
-        let (s, c) = hub.angle_rad.sin_cos();
         let n = f.len();
         let (qs, qds) = (&q.as_slice()[..n], &qd.as_slice()[..n]);
         // One pass over the five matrices, column by column (their storage order): −K_t q − C_t q̇.
@@ -233,20 +265,20 @@ impl Dynamics for ArmSystem<'_> {
         match self.drive {
             HubDrive::Prescribed(profile) => {
                 // q = x, q̇ = v: no split, no copies.
-                let hub = profile.sample(t);
+                let (hub, trig) = self.prescribed_hub(profile, t);
                 // −θ̈ S̃ = −θ̈ (S + C q).
                 f.copy_from(&self.arm.coupling);
                 *f *= -hub.accel_rad_s2;
                 let f = f.as_mut_slice();
                 add_product(f, -hub.accel_rad_s2, &self.arm.gyroscopic, x.as_slice());
-                self.add_elastic_forces(&hub, x, v, f);
+                self.add_elastic_forces(&hub, trig, x, v, f);
             }
             HubDrive::Free { torque_n_m } => {
                 let (hub, q, qd) = self.split(t, x, v);
                 f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
                 let elastic = &mut f.as_mut_slice()[1..];
                 elastic.fill(0.0);
-                self.add_elastic_forces(&hub, &q, &qd, elastic);
+                self.add_elastic_forces(&hub, hub.angle_rad.sin_cos(), &q, &qd, elastic);
             }
         }
     }
@@ -267,8 +299,8 @@ impl Dynamics for ArmSystem<'_> {
         let a = self.arm;
         if let HubDrive::Prescribed(profile) = self.drive {
             // In place: this runs at every Newton iteration.
-            let hub = profile.sample(t);
-            let (w, s, acc) = (hub.rate_rad_s, hub.angle_rad.sin(), hub.accel_rad_s2);
+            let (hub, (s, _)) = self.prescribed_hub(profile, t);
+            let (w, acc) = (hub.rate_rad_s, hub.accel_rad_s2);
             let (stiffness, spin) = (a.stiffness.as_slice(), a.spin_mass.as_slice());
             let (gravity, gyroscopic, damping) =
                 (a.gravity_stiffness.as_slice(), a.gyroscopic.as_slice(), a.damping.as_slice());

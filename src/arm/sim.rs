@@ -106,7 +106,7 @@ impl ArmSimulation {
             HubDrive::Free { .. } => (Vec::new(), Vec::new()),
         };
         let load = GeneralizedLoad::zero(n);
-        let system = ArmSystem { arm: &arm, drive: &drive, load: &load, contacts: &[] };
+        let system = ArmSystem::new(&arm, &drive, &load, &[]);
         let state = State::consistent(&system, 0.0, x, v)?;
         let mut sim = ArmSimulation {
             integrator: integrator.build()?,
@@ -133,7 +133,7 @@ impl ArmSimulation {
             });
         }
         self.state.v[0] = rate_rad_s;
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
         self.state.refresh_acceleration(&system)?;
         self.integrator.reset();
         Ok(())
@@ -217,7 +217,7 @@ impl ArmSimulation {
     /// One integrator step of `h`; where Newton's iteration fails (a contact law's kink inside
     /// the step), the step is retried as two halves, down to 1/64 of it.
     fn advance_halving(&mut self, h: f64, depth: u32) -> Result<(), ArmError> {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
         match self.integrator.step(&system, &mut self.state, h) {
             Err(crate::integrate::IntegrateError::NoConvergence { .. }) if depth < 6 => {
                 // A failed step leaves the state as it was; the integrator's history is dropped.
@@ -249,7 +249,7 @@ impl ArmSimulation {
                 .solve(&(-jump * coupling))
                 .ok_or(ArmError::Integrate(crate::integrate::IntegrateError::SingularMatrix { t: tj }))?;
             self.state.v += dqd;
-            let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+            let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
             self.state.refresh_acceleration(&system)?;
             self.integrator.reset();
         }
@@ -282,8 +282,7 @@ impl ArmSimulation {
         match &self.drive {
             HubDrive::Prescribed(profile) => (profile.sample(s.t), Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
             HubDrive::Free { .. } => {
-                let system =
-                    ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+                let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
                 let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
                 hub.accel_rad_s2 = s.a[0];
                 (hub, Cow::Owned(q), Cow::Owned(qd))
@@ -293,7 +292,7 @@ impl ArmSimulation {
 
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
-        let system = ArmSystem { arm: &self.arm, drive: &self.drive, load: &self.load, contacts: &self.contacts };
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
         let s = &self.state;
         let (hub, q, qd) = self.kinematics();
         let qdd = match self.drive {

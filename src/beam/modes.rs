@@ -1,6 +1,6 @@
 //! Clamped-hub eigenmodes: K φ = ω² M φ, optionally at a steady spin rate Ω.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 
 use super::{BeamError, BeamModel};
 
@@ -73,11 +73,11 @@ fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, B
         .cholesky()
         .ok_or(BeamError::NotPositiveDefinite { matrix: "mass", why: "every DOF needs mass or inertia".into() })?;
     let l = chol.l();
-    let l_inv = l
-        .clone()
-        .try_inverse()
-        .ok_or(BeamError::NotPositiveDefinite { matrix: "mass", why: "singular Cholesky factor".into() })?;
-    let mut a = &l_inv * k * l_inv.transpose();
+    // A = L⁻¹ K L⁻ᵀ by two triangular solves (K symmetric: L⁻¹ K L⁻ᵀ = L⁻¹ (L⁻¹ K)ᵀ), not an
+    // explicit inverse and two products: this runs once per run, a quarter of its start-up.
+    let singular = || BeamError::NotPositiveDefinite { matrix: "mass", why: "singular Cholesky factor".into() };
+    let half = l.solve_lower_triangular(k).ok_or_else(singular)?;
+    let mut a = l.solve_lower_triangular(&half.transpose()).ok_or_else(singular)?;
     a = 0.5 * (&a + a.transpose());
     let eig = a.symmetric_eigen();
     let mut order: Vec<usize> = (0..eig.eigenvalues.len()).collect();
@@ -90,10 +90,11 @@ fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, B
             why: format!("lowest eigenvalue ω² = {:.4e} (the arm is unstable in this state)", eig.eigenvalues[lowest]),
         });
     }
-    let l_inv_t = l_inv.transpose();
+    // φ = L⁻ᵀ y for every eigenvector at once.
+    let all_shapes = l.transpose().solve_upper_triangular(&eig.eigenvectors).ok_or_else(singular)?;
     let mut shapes = DMatrix::zeros(k.nrows(), order.len());
     for (col, &i) in order.iter().enumerate() {
-        let mut phi: DVector<f64> = &l_inv_t * eig.eigenvectors.column(i);
+        let mut phi = all_shapes.column(i).into_owned();
         // Sign convention: the largest component is positive, so runs are reproducible.
         if phi.iter().copied().max_by(|a, b| a.abs().total_cmp(&b.abs())).unwrap_or(0.0) < 0.0 {
             phi.neg_mut();
