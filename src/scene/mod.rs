@@ -515,11 +515,16 @@ impl Scene {
     fn deepest_point(&mut self, i: usize, reach: f64) -> Option<ArmContact> {
         let pad = &self.pads[i];
         let pad_collider = &self.world.colliders[pad.collider];
+        // Shapes whose bounding box is beyond reach of the pad's are not queried.
+        let pad_box = pad_collider.compute_aabb().loosened(reach);
         let (hub, q, _) = self.arm.kinematics();
         let mut best: Option<(f64, Vector, &ArmPiece, Pose)> = None;
         for piece in self.pieces.iter().filter(|p| p.near_pad) {
             let pose = pose_piece(piece, &hub, &q, self.pivot_m);
             let shape = self.world.colliders[piece.collider].shape();
+            if !shape.compute_aabb(&pose).intersects(&pad_box) {
+                continue;
+            }
             let found = parry3d_f64::query::contact(&pose, shape, pad_collider.position(), pad_collider.shape(), reach);
             if let Ok(Some(contact)) = found
                 && contact.dist <= reach
