@@ -90,11 +90,11 @@ fn load_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn scenario_errors_name_file_key_and_range() {
-    let m = load_error("unknown", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\nstep_count = 3"));
+    let m = load_error("unknown", |t| t.replace("step_s = 0.003", "step_s = 0.003\nstep_count = 3"));
     assert!(m.contains("step_count"), "{m}");
-    let m = load_error("missing", |t| t.replace("step_s = 0.0025\n", ""));
+    let m = load_error("missing", |t| t.replace("step_s = 0.003\n", ""));
     assert!(m.contains("step_s"), "{m}");
-    let m = load_error("negative-step", |t| t.replace("step_s = 0.0025", "step_s = -0.0025"));
+    let m = load_error("negative-step", |t| t.replace("step_s = 0.003", "step_s = -0.003"));
     assert!(m.contains("time.step_s") && m.contains("0 < step_s"), "{m}");
     let m = load_error("accel", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.9"));
     assert!(m.contains("drive.ramp_fraction"), "{m}");
@@ -104,13 +104,13 @@ fn scenario_errors_name_file_key_and_range() {
     let m = load_error("integrator", |t| t.replace("method = \"rk4\"", &generalized_alpha("1.5")));
     assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
     // Controlled free steps: a tolerance needs a free step, a free step an implicit method.
-    let m = load_error("tolerance", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\ntolerance_m = 1e-6"));
+    let m = load_error("tolerance", |t| t.replace("step_s = 0.003", "step_s = 0.003\ntolerance_m = 1e-6"));
     assert!(m.contains("time.tolerance_m") && m.contains("free_step_s"), "{m}");
-    let m = load_error("free-explicit", |t| t.replace("step_s = 0.0025", "step_s = 0.0025\nfree_step_s = 0.01"));
+    let m = load_error("free-explicit", |t| t.replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01"));
     assert!(m.contains("time.free_step_s") && m.contains("implicit"), "{m}");
     let m = load_error("bad-tolerance", |t| {
         t.replace("method = \"rk4\"", &generalized_alpha("0.8"))
-            .replace("step_s = 0.0025", "step_s = 0.0025\nfree_step_s = 0.01\ntolerance_m = -1.0")
+            .replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01\ntolerance_m = -1.0")
     });
     assert!(m.contains("time.tolerance_m") && m.contains("0 < tolerance_m"), "{m}");
     let m = load_error("modes", |t| t.replace("kind = \"auto\"", "kind = \"modal\"\nmodes = 500"));

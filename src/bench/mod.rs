@@ -288,7 +288,7 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
     for fidelity in [Fidelity::Modal { modes: 1 }, Fidelity::Modal { modes: 8 }, Fidelity::Fe] {
         let axis = format!("step: {fidelity}");
         let coarse = steps.iter().filter(|&&h| fidelity != Fidelity::Fe || h >= 0.5 * h0);
-        out.extend(coarse.map(|&step_s| Variant { axis: axis.clone(), fidelity, step_s, ..base.clone() }));
+        out.extend(coarse.map(|&step_s| Variant { axis: axis.clone(), fidelity, step_s, ..implicit.clone() }));
     }
     if !scenario.spec.dampeners.is_empty() {
         // rapier's pad body is explicit: it needs steps well below the scene's (stability map).
