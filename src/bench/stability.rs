@@ -265,7 +265,9 @@ pub fn map(
 }
 
 /// The friction clamp with the 121 kg and 200 kg strings over a range of steps, at the bench's
-/// auto model and at eight modes: whether each run holds, and its slip.
+/// auto model and at eight modes, under generalized-α (so that a divergence is the clamp's
+/// coupling, not an explicit scene integrator's limit on the arm): whether each run holds, and
+/// its slip.
 fn clamp_sweep(scenario: &Scenario, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
     if !matches!(scenario.spec.payload, PayloadSpec::String { .. }) {
         return Ok(Vec::new());
@@ -276,6 +278,7 @@ fn clamp_sweep(scenario: &Scenario, auto: Fidelity, quick: bool) -> Result<Vec<C
     let mut out = Vec::new();
     for size in ["2-7/8", "4-1/2"] {
         let mut s = scenario.clone();
+        s.spec.integrator = IntegratorKind::default();
         if let PayloadSpec::String { string, clamp, .. } = &mut s.spec.payload {
             *string = StringSpec { size: size.into(), length_m: None };
             *clamp = Clamp::Friction;
