@@ -19,15 +19,16 @@
 //! | `events` | impacts (start, peak, end), warnings |
 //! | `summary` | the run summary (JSON) |
 //!
-//! Steps are kept at the record rate in free motion and every step in contact, so no peak is
-//! lost ([`crate::run::RunOptions`]). Files are written to a temporary name and renamed when
+//! Steps are kept at the record rate in free motion and every step in contact, and each impact's
+//! interpolated peak is inserted at its time in its pad's force series, so no peak is lost and the
+//! plot peaks at the summary's figure ([`crate::run::RunOptions`]). Files are written to a temporary name and renamed when
 //! complete, so a failed run leaves no half recording.
 
 use std::path::Path;
 
 use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical};
 
-use crate::run::{RunSummary, Series};
+use crate::run::{PairSummary, RunSummary, Series};
 use crate::scene::{Frame, SceneLayout};
 
 /// Errors writing a recording.
@@ -83,7 +84,7 @@ pub fn write_recording(
         .set_sinks(vec![Box::new(sink.clone()) as Box<dyn rerun::sink::LogSink>])
         .map_err(|e| rerun_err(&e))?;
     let writer = Writer { rec: &rec, series };
-    writer.plots(pad_names).map_err(|e| rerun_err(&e))?;
+    writer.plots(pad_names, summary).map_err(|e| rerun_err(&e))?;
     if let Some(layout) = &series.layout {
         writer.scene(layout, summary).map_err(|e| rerun_err(&e))?;
     }
@@ -192,7 +193,23 @@ impl Writer<'_> {
         self.rec.send_columns(entity, [times], columns)
     }
 
-    fn plots(&self, pad_names: &[String]) -> rerun::RecordingStreamResult<()> {
+    /// A pad's force at the kept steps with each impact's interpolated peak (summary) inserted at
+    /// its time, so the plotted series peaks at the reported peak.
+    fn send_force(&self, entity: &str, forces: &[f64], pair: Option<&PairSummary>) -> rerun::RecordingStreamResult<()> {
+        let mut rows: Vec<(f64, f64)> = self.kept(self.series.t_s.iter().copied().zip(forces.iter().copied()));
+        let peaks = pair.map_or(&[][..], |p| &p.impacts[..]).iter().map(|i| (i.peak_time_s, i.peak_force_n));
+        for (t, f) in peaks.filter(|p| p.0.is_finite()) {
+            let at = rows.partition_point(|r| r.0 < t);
+            if rows.get(at).is_none_or(|r| r.0 != t) {
+                rows.insert(at, (t, f));
+            }
+        }
+        let times = rerun::TimeColumn::new_duration_secs("sim_time", rows.iter().map(|r| r.0));
+        let columns = rerun::Scalars::new(rows.iter().map(|r| r.1)).columns_of_unit_batches()?;
+        self.rec.send_columns(entity, [times], columns)
+    }
+
+    fn plots(&self, pad_names: &[String], summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
         let s = self.series;
         for (k, axis) in ["axial", "transverse"].iter().enumerate() {
             self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
@@ -211,8 +228,8 @@ impl Writer<'_> {
         if !s.string_slip_m.is_empty() {
             self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
         }
-        for (name, forces) in pad_names.iter().zip(&s.pad_force_n) {
-            self.send(&force_entity(name), forces.iter().copied())?;
+        for (k, (name, forces)) in pad_names.iter().zip(&s.pad_force_n).enumerate() {
+            self.send_force(&force_entity(name), forces, summary.pairs.get(k))?;
         }
         Ok(())
     }
