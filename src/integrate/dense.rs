@@ -50,10 +50,10 @@ pub(crate) struct AccelerationSolver {
 }
 
 impl AccelerationSolver {
-    /// Writes ẍ into `out` (sized to the system).
-    pub(crate) fn solve(
+    /// Writes ẍ into `out` (resized to the system if it is not).
+    pub(crate) fn solve<S: Dynamics + ?Sized>(
         &mut self,
-        sys: &dyn Dynamics,
+        sys: &S,
         t: f64,
         x: &DVector<f64>,
         v: &DVector<f64>,
@@ -62,6 +62,12 @@ impl AccelerationSolver {
         let n = sys.dofs();
         if self.f.len() != n {
             (self.f, self.m) = (DVector::zeros(n), DMatrix::zeros(n, n));
+        }
+        if out.len() != n {
+            *out = DVector::zeros(n);
+        }
+        if n == 0 {
+            return Ok(());
         }
         sys.forces(t, x, v, &mut self.f);
         if sys.solve_mass(t, x, &self.f, out) {

@@ -108,7 +108,7 @@ impl State {
     }
 }
 
-/// Solves M(t, x) ẍ = f(t, x, ẋ) for ẍ.
+/// Solves M(t, x) ẍ = f(t, x, ẋ) for ẍ (once; the integrators keep an [`AccelerationSolver`]).
 pub fn solve_acceleration<S: Dynamics + ?Sized>(
     sys: &S,
     t: f64,
@@ -116,23 +116,7 @@ pub fn solve_acceleration<S: Dynamics + ?Sized>(
     v: &DVector<f64>,
     a: &mut DVector<f64>,
 ) -> Result<(), IntegrateError> {
-    let n = sys.dofs();
-    if n == 0 {
-        *a = DVector::zeros(0);
-        return Ok(());
-    }
-    let mut f = DVector::zeros(n);
-    sys.forces(t, x, v, &mut f);
-    if a.len() != n {
-        *a = DVector::zeros(n);
-    }
-    if sys.solve_mass(t, x, &f, a) {
-        return Ok(());
-    }
-    let mut m = DMatrix::zeros(n, n);
-    sys.mass_matrix(t, x, &mut m);
-    *a = m.lu().solve(&f).ok_or(IntegrateError::SingularMatrix { t })?;
-    Ok(())
+    AccelerationSolver::default().solve(sys, t, x, v, a)
 }
 
 /// What went wrong in a step.
