@@ -32,6 +32,12 @@ impl GeneralizedLoad {
         GeneralizedLoad { hub_torque_n_m: 0.0, modal: DVector::zeros(elastic_dofs) }
     }
 
+    /// Back to no load, in place.
+    pub fn clear(&mut self) {
+        self.hub_torque_n_m = 0.0;
+        self.modal.fill(0.0);
+    }
+
     /// Adds another load.
     pub fn add(&mut self, other: &GeneralizedLoad) {
         self.hub_torque_n_m += other.hub_torque_n_m;

@@ -1,11 +1,12 @@
 //! Time-stepping the arm alone (no contact) and reading its outputs.
 
 use std::borrow::Cow;
+use std::cell::Cell;
 
 use nalgebra::DVector;
 
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
-use crate::drive::DriveState;
+use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
 
 /// Energies of the arm, J.
@@ -66,6 +67,9 @@ pub struct ArmSimulation {
     rate_jumps: Vec<(f64, f64)>,
     /// Where the prescribed drive changes piece, s: controlled steps end there.
     breakpoints_s: Vec<f64>,
+    /// The prescribed hub at the last time asked (the outputs, the scene's reach and contact
+    /// checks all ask at the current time).
+    hub_now: Cell<Option<(f64, DriveState)>>,
 }
 
 impl ArmSimulation {
@@ -118,6 +122,7 @@ impl ArmSimulation {
             state,
             rate_jumps,
             breakpoints_s,
+            hub_now: Cell::new(None),
         };
         sim.apply_rate_jumps_up_to(0.0)?;
         Ok(sim)
@@ -280,12 +285,25 @@ impl ArmSimulation {
     pub fn kinematics(&self) -> (DriveState, Cow<'_, DVector<f64>>, Cow<'_, DVector<f64>>) {
         let s = &self.state;
         match &self.drive {
-            HubDrive::Prescribed(profile) => (profile.sample(s.t), Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
+            HubDrive::Prescribed(profile) => (self.prescribed_hub(profile), Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
             HubDrive::Free { .. } => {
                 let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
                 let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
                 hub.accel_rad_s2 = s.a[0];
                 (hub, Cow::Owned(q), Cow::Owned(qd))
+            }
+        }
+    }
+
+    /// The prescribed hub at the current time, sampled once per time.
+    fn prescribed_hub(&self, profile: &MotionProfile) -> DriveState {
+        let t = self.state.t;
+        match self.hub_now.get() {
+            Some((cached_t, hub)) if cached_t == t => hub,
+            _ => {
+                let hub = profile.sample(t);
+                self.hub_now.set(Some((t, hub)));
+                hub
             }
         }
     }

@@ -378,7 +378,7 @@ impl Scene {
         if self.method == ContactMethod::Rapier {
             self.pose_pieces(false);
         }
-        self.arm.load = self.loads_from_rapier();
+        self.set_loads_from_rapier();
         self.arm.contacts = match self.method {
             ContactMethod::Compliant => self.compliant_contacts(h_s),
             ContactMethod::Rapier => Vec::new(),
@@ -402,20 +402,21 @@ impl Scene {
         Ok(())
     }
 
-    /// Loads measured in rapier's last step, as generalized forces on the arm now: the pads'
-    /// (`rapier` method) and the friction clamp's correction.
-    fn loads_from_rapier(&self) -> GeneralizedLoad {
-        if self.rapier_load.is_empty() && self.grip.is_none() {
-            return GeneralizedLoad::zero(self.arm.arm.elastic_dofs());
+    /// Sets the arm's load to what rapier's last step measured, as generalized forces on the arm
+    /// now: the pads' (`rapier` method) and the friction clamp's correction (in place: no
+    /// allocation on the steps without either).
+    fn set_loads_from_rapier(&mut self) {
+        let mut load = std::mem::replace(&mut self.arm.load, GeneralizedLoad::zero(0));
+        load.clear();
+        if !self.rapier_load.is_empty() || self.grip.is_some() {
+            let (hub, q, _) = self.arm.kinematics();
+            let arm = &self.arm.arm;
+            let grip = self.grip.as_ref().map(|g| (g.station_m, g.correction_force_n));
+            for (station, force) in self.rapier_load.iter().map(|&(_, s, f)| (s, f)).chain(grip) {
+                load.add(&arm.point_force(station, force, hub.angle_rad, &q));
+            }
         }
-        let (hub, q, _) = self.arm.kinematics();
-        let arm = &self.arm.arm;
-        let mut load = GeneralizedLoad::zero(arm.elastic_dofs());
-        let grip = self.grip.as_ref().map(|g| (g.station_m, g.correction_force_n));
-        for (station, force) in self.rapier_load.iter().map(|&(_, s, f)| (s, f)).chain(grip) {
-            load.add(&arm.point_force(station, force, hub.angle_rad, &q));
-        }
-        load
+        self.arm.load = load;
     }
 
     /// Whether the arm could reach a pad within a step of `h_s`: each pad's clearance, less what
@@ -435,7 +436,7 @@ impl Scene {
     /// [`Self::free_step_allowed`] holds: no pad in reach, nothing else to step). Returns the step
     /// taken and the next to try, s.
     pub fn step_free(&mut self, h_s: f64, control: &StepControl) -> Result<(f64, f64), SceneError> {
-        self.arm.load = self.loads_from_rapier();
+        self.set_loads_from_rapier();
         self.arm.contacts.clear();
         let steps = self.arm.step_controlled(h_s, control)?;
         self.measure_compliant_forces();
