@@ -51,7 +51,7 @@ fn arm_step(c: &mut Criterion) {
 }
 
 /// One step of the whole scene with the arm at its stop, 0.2 mm from its pad: compliant at each
-/// fidelity (rapier's narrow phase runs only on steps whose motion could close the gap), and the
+/// fidelity (the contact queries run only on steps whose motion could close the gap), and the
 /// rapier method (rapier's whole pipeline every step).
 fn scene_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("scene_step_at_the_stop");
