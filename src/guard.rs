@@ -97,7 +97,7 @@ pub fn stability_advice(
     step_s: f64,
     penalty_limit_s: Option<f64>,
 ) -> String {
-    let implicit = "generalized-alpha (the default, stable at any step)";
+    let implicit = "generalized-alpha (stable at any step)";
     let omega_dt = omega_max_rad_s * step_s;
     match integrator.stability_limit_omega_dt() {
         Some(0.0) => {

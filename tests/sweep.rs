@@ -48,7 +48,7 @@ fn one_and_two_threads_give_the_same_bytes_and_a_chart() {
     }
     let csv = String::from_utf8(read(&one, "results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 7);
-    assert!(csv.starts_with("index,hash,drive.duration_s,payload.size,time.settle_s,scenario,"));
+    assert!(csv.starts_with("index,hash,drive.duration_s,payload.size,time.settle_s,outcome,scenario,"));
     let header = csv.lines().next().unwrap();
     assert!(header.contains(",pairs.0.peak_force_n,") && !header.contains(".impacts"), "{header}");
     let svg = String::from_utf8(read(&one, "force_vs_weight.svg")).unwrap();
@@ -85,6 +85,24 @@ fn a_rerun_skips_current_cases_and_reruns_a_changed_one() {
     assert_eq!(files, 6, "the stale case files of 8 s are gone");
     let csv = String::from_utf8(read(&out, "results.csv")).unwrap();
     assert!(csv.lines().nth(5).unwrap().starts_with("4,") && csv.contains(",7,4-1/2,"), "{csv}");
+}
+
+/// The shipped RK4 at 10 ms is past its limit on the default arm (ω_max·dt = 3.4 > 2.83): that
+/// case's run is stopped by the guard, and the sweep records it beside the case that ran.
+#[test]
+fn a_case_the_guard_stops_is_a_result_not_a_failed_sweep() {
+    let out = out_dir("diverged");
+    let report =
+        run(vary(&["time.step_s=0.003,0.01", "drive.duration_s=4", "time.settle_s=0.5"]), &out, None, Shard::ALL)
+            .unwrap();
+    assert_eq!(report.ran, 2);
+    let csv = String::from_utf8(read(&out, "results.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert!(rows[0].starts_with("index,hash,time.step_s,drive.duration_s,time.settle_s,outcome,"), "{}", rows[0]);
+    assert!(rows[1].contains(",ran,"), "{}", rows[1]);
+    assert!(rows[2].contains(",diverged at "), "{}", rows[2]);
+    let json = String::from_utf8(read(&out, "results.json")).unwrap();
+    assert!(json.contains("\"summary\": null") && json.contains("use step_s <= "), "{json}");
 }
 
 #[test]

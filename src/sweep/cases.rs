@@ -1,6 +1,8 @@
 //! Case files: `DIR/cases/<index>-<hash>.json` = `{index, hash, values, summary}`, one per run
-//! case, written whole (temporary name, then rename). A case whose file exists with its hash is
-//! current and is not run again.
+//! case, written whole (temporary name, then rename); a case whose run diverged has `summary`
+//! null and `diverged: {t_s, what, advice}` instead (the guard's verdict is a result of the
+//! sweep, not a failure of it). A case whose file exists with its hash is current and is not
+//! run again.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -13,6 +15,7 @@ use super::shard::Shard;
 use super::{SweepError, io_error, write_atomic};
 use crate::run::{RunSummary, run};
 use crate::scenario::Scenario;
+use crate::scene::SceneError;
 
 /// What one shard has to do.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -29,7 +32,17 @@ struct CaseFile<'a> {
     index: usize,
     hash: &'a str,
     values: &'a std::collections::BTreeMap<String, toml::Value>,
-    summary: &'a RunSummary,
+    summary: Option<&'a RunSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    diverged: Option<Diverged<'a>>,
+}
+
+/// Where and why a case's run was stopped, and the guard's advice.
+#[derive(Serialize)]
+struct Diverged<'a> {
+    t_s: f64,
+    what: &'a str,
+    advice: &'a str,
 }
 
 /// The folder of the case files.
@@ -115,12 +128,22 @@ fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
 }
 
 fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path) -> Result<(), SweepError> {
-    let (summary, _) = run(scenario, None).map_err(|source| SweepError::Run {
-        index: case.index,
-        values: case.describe(&plan.keys()),
-        error: Box::new(source),
-    })?;
-    let file = CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary: &summary };
-    let json = serde_json::to_string_pretty(&file).expect("a summary serialises") + "\n";
+    let file =
+        |summary, diverged| CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary, diverged };
+    let json = match run(scenario, None) {
+        Ok((summary, _)) => serde_json::to_string_pretty(&file(Some(&summary), None)),
+        Err(SceneError::Diverged { t_s, what, advice }) => {
+            serde_json::to_string_pretty(&file(None, Some(Diverged { t_s, what: &what, advice: &advice })))
+        }
+        Err(source) => {
+            return Err(SweepError::Run {
+                index: case.index,
+                values: case.describe(&plan.keys()),
+                error: Box::new(source),
+            });
+        }
+    }
+    .expect("a summary serialises")
+        + "\n";
     write_atomic(&case_path(dir, case), json.as_bytes(), "case")
 }

@@ -1,6 +1,6 @@
 //! Merging a sweep: the plan and every case file → `results.json` (the case files in index
-//! order, verbatim), `results.csv` (one row per case: index, hash, each varied key, every
-//! scalar of the summary but the per-impact arrays) and the chart. The bytes depend only on
+//! order, verbatim), `results.csv` (one row per case: index, hash, each varied key, the outcome,
+//! every scalar of the summary but the per-impact arrays) and the chart. The bytes depend only on
 //! the case files, so any split into shards merges to the same files.
 
 use std::path::{Path, PathBuf};
@@ -104,15 +104,19 @@ fn csv(plan: &Plan, rows: &[Row]) -> String {
         }
     }
     let keys = plan.keys();
-    let mut out =
-        line(["index", "hash"].into_iter().chain(keys.iter().copied()).chain(summary_columns.iter().copied()));
+    let header = ["index", "hash"].into_iter().chain(keys.iter().copied()).chain(["outcome"]);
+    let mut out = line(header.chain(summary_columns.iter().copied()));
     for (row, case) in rows.iter().zip(&plan.cases) {
         let cell = |path: String| row.get(&path).map(Scalar::cell).unwrap_or_default();
         // An inline table or array value has no single scalar: the plan shows it as TOML.
         let value = |k: &&str| row.get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), Scalar::cell);
+        // `ran`, or where the guard stopped the run (its reason and advice are in the JSON).
+        let outcome =
+            row.get("diverged.t_s").map_or_else(|| "ran".to_string(), |t| format!("diverged at {} s", t.cell()));
         let cells: Vec<String> = [cell("index".into()), cell("hash".into())]
             .into_iter()
             .chain(keys.iter().map(value))
+            .chain([outcome])
             .chain(summary_columns.iter().map(|c| cell(format!("summary.{c}"))))
             .collect();
         out += &line(cells.iter().map(String::as_str));
