@@ -96,9 +96,9 @@ fn angular_momentum(sim: &ArmSimulation) -> f64 {
 }
 
 fn kinetic(sim: &ArmSimulation, state: &pipearm::integrate::State) -> f64 {
-    let load = GeneralizedLoad::zero(sim.arm.elastic_dofs());
-    let system = pipearm::arm::ArmSystem::new(&sim.arm, &sim.drive, &load, &[]);
-    let (hub, q, qd) = system.split(state.t, &state.x, &state.v);
+    let (load, hub) = (GeneralizedLoad::zero(sim.arm.elastic_dofs()), pipearm::arm::HubCache::default());
+    let system = pipearm::arm::ArmSystem::new(&sim.arm, &sim.drive, &load, &[], &hub);
+    let (hub, q, qd) = system.split_free_hub(&state.x, &state.v);
     system.energies(&hub, &q, &qd).kinetic_j
 }
 

@@ -55,49 +55,52 @@ pub struct ArmSystem<'a> {
     pub load: &'a GeneralizedLoad,
     /// Pad contacts, evaluated on the current configuration.
     pub contacts: &'a [ArmContact],
-    /// The prescribed hub at the last time asked, with (sin, cos) of its angle: RK4 asks twice
-    /// at the half step, and its last stage and the end-of-step acceleration at the same time.
-    hub_cache: Cell<Option<HubAt>>,
+    /// The prescribed hub by time, shared with the simulation's outputs.
+    hub: &'a HubCache,
 }
 
-/// A prescribed hub's state at a time (s) with (sin, cos) of its angle.
+/// A prescribed hub at the last time asked, with (sin, cos) of its angle: RK4 evaluates twice at
+/// the half step, its last stage and the end-of-step acceleration at the same time, and the
+/// outputs and the scene's checks ask again at that time.
+#[derive(Debug, Default)]
+pub struct HubCache(Cell<Option<HubAt>>);
+
+/// Time (s), the hub's state then, and (sin, cos) of its angle.
 type HubAt = (f64, DriveState, (f64, f64));
 
-impl<'a> ArmSystem<'a> {
-    /// The arm under its drive, loads and contacts.
-    pub fn new(arm: &'a ArmModel, drive: &'a HubDrive, load: &'a GeneralizedLoad, contacts: &'a [ArmContact]) -> Self {
-        ArmSystem { arm, drive, load, contacts, hub_cache: Cell::new(None) }
-    }
-
-    /// The prescribed hub at `t` and (sin, cos) of its angle.
-    fn prescribed_hub(&self, profile: &MotionProfile, t: f64) -> (DriveState, (f64, f64)) {
-        if let Some((cached_t, hub, trig)) = self.hub_cache.get()
+impl HubCache {
+    /// `profile` at `t`, s, and (sin, cos) of its angle.
+    pub fn at(&self, profile: &MotionProfile, t: f64) -> (DriveState, (f64, f64)) {
+        if let Some((cached_t, hub, trig)) = self.0.get()
             && cached_t == t
         {
             return (hub, trig);
         }
         let hub = profile.sample(t);
         let trig = hub.angle_rad.sin_cos();
-        self.hub_cache.set(Some((t, hub, trig)));
+        self.0.set(Some((t, hub, trig)));
         (hub, trig)
     }
+}
 
-    /// Splits integrator coordinates into hub state and q (for a free hub the hub's
+impl<'a> ArmSystem<'a> {
+    /// The arm under its drive, loads and contacts; `hub` remembers the prescribed hub by time.
+    pub fn new(
+        arm: &'a ArmModel,
+        drive: &'a HubDrive,
+        load: &'a GeneralizedLoad,
+        contacts: &'a [ArmContact],
+        hub: &'a HubCache,
+    ) -> Self {
+        ArmSystem { arm, drive, load, contacts, hub }
+    }
+
+    /// A free hub's state and q, q̇ from the integrator's coordinates [θ, q] (the hub's
     /// acceleration is unknown here and reported as 0).
-    pub fn split<'v>(
-        &self,
-        t: f64,
-        x: &'v DVector<f64>,
-        v: &'v DVector<f64>,
-    ) -> (DriveState, DVector<f64>, DVector<f64>) {
-        match self.drive {
-            HubDrive::Prescribed(profile) => (profile.sample(t), x.clone(), v.clone()),
-            HubDrive::Free { .. } => {
-                let n = self.arm.elastic_dofs();
-                let hub = DriveState { angle_rad: x[0], rate_rad_s: v[0], accel_rad_s2: 0.0, jerk_rad_s3: 0.0 };
-                (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
-            }
-        }
+    pub fn split_free_hub(&self, x: &DVector<f64>, v: &DVector<f64>) -> (DriveState, DVector<f64>, DVector<f64>) {
+        let n = self.arm.elastic_dofs();
+        let hub = DriveState { angle_rad: x[0], rate_rad_s: v[0], accel_rad_s2: 0.0, jerk_rad_s3: 0.0 };
+        (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
     }
 
     /// Adds the elastic generalized forces without the θ̈ term to `f` (allocation-free: it runs
@@ -154,7 +157,7 @@ impl<'a> ArmSystem<'a> {
     ) -> f64 {
         let a = self.arm;
         let g = a.options.gravity_m_s2;
-        let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd) + bilinear(&a.spin_mass, qd, q));
+        let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd.as_slice()) + bilinear(&a.spin_mass, qd, q));
         let contact: f64 = self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum();
         applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
     }
@@ -164,13 +167,15 @@ impl<'a> ArmSystem<'a> {
         let a = self.arm;
         // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
         let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
-        -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q)) + g * s * dot(&a.transverse_mass, q) + foreshortening
+        -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
+            + g * s * dot(&a.transverse_mass, q.as_slice())
+            + foreshortening
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
     fn pivot_inertia(&self, q: &DVector<f64>) -> f64 {
         let a = self.arm;
-        a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q) + bilinear(&a.spin_mass, q, q)
+        a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q.as_slice()) + bilinear(&a.spin_mass, q, q)
     }
 
     /// S̃ = S + C q.
@@ -180,7 +185,7 @@ impl<'a> ArmSystem<'a> {
 
     /// S̃ · y = S·y + (C q)·y, without forming S̃.
     fn coupling_dot(&self, q: &DVector<f64>, y: &DVector<f64>) -> f64 {
-        dot(&self.arm.coupling, y) + bilinear(&self.arm.gyroscopic, y, q)
+        dot(&self.arm.coupling, y.as_slice()) + bilinear(&self.arm.gyroscopic, y, q)
     }
 
     /// Kinetic, strain and gravity energy at (hub, q, q̇), J.
@@ -202,7 +207,8 @@ impl<'a> ArmSystem<'a> {
         let w = hub.rate_rad_s;
         let kinetic_j = 0.5 * w * w * pivot_inertia + w * self.coupling_dot(q, qd) + 0.5 * bilinear(&a.mass, qd, qd);
         let g = a.options.gravity_m_s2;
-        let gravity_j = g * s * (a.first_moment_kg_m + dot(&a.axial_mass, q)) + g * c * dot(&a.transverse_mass, q)
+        let gravity_j = g * s * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
+            + g * c * dot(&a.transverse_mass, q.as_slice())
             - 0.5 * s * bilinear(&a.gravity_stiffness, q, q);
         Energies { kinetic_j, strain_j: 0.5 * bilinear(&a.stiffness, q, q), gravity_j }
     }
@@ -271,7 +277,7 @@ impl Dynamics for ArmSystem<'_> {
         match self.drive {
             HubDrive::Prescribed(profile) => {
                 // q = x, q̇ = v: no split, no copies.
-                let (hub, trig) = self.prescribed_hub(profile, t);
+                let (hub, trig) = self.hub.at(profile, t);
                 // −θ̈ S̃ = −θ̈ (S + C q).
                 f.copy_from(&self.arm.coupling);
                 *f *= -hub.accel_rad_s2;
@@ -280,7 +286,7 @@ impl Dynamics for ArmSystem<'_> {
                 self.add_elastic_forces(&hub, trig, x, v, f);
             }
             HubDrive::Free { torque_n_m } => {
-                let (hub, q, qd) = self.split(t, x, v);
+                let (hub, q, qd) = self.split_free_hub(x, v);
                 f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
                 let elastic = &mut f.as_mut_slice()[1..];
                 elastic.fill(0.0);
@@ -305,7 +311,7 @@ impl Dynamics for ArmSystem<'_> {
         let a = self.arm;
         if let HubDrive::Prescribed(profile) = self.drive {
             // In place: this runs at every Newton iteration.
-            let (hub, (s, _)) = self.prescribed_hub(profile, t);
+            let (hub, (s, _)) = self.hub.at(profile, t);
             let (w, acc) = (hub.rate_rad_s, hub.accel_rad_s2);
             let (stiffness, spin) = (a.stiffness.as_slice(), a.spin_mass.as_slice());
             let (gravity, gyroscopic, damping) =
@@ -323,7 +329,7 @@ impl Dynamics for ArmSystem<'_> {
             }
             return;
         }
-        let (hub, q, qd) = self.split(t, x, v);
+        let (hub, q, qd) = self.split_free_hub(x, v);
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, co) = hub.angle_rad.sin_cos();
         let mut k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
@@ -347,11 +353,12 @@ impl Dynamics for ArmSystem<'_> {
         k.view_mut((1, 0), (n, 1)).copy_from(&k_q_theta);
         let c_q_theta = 2.0 * (&a.gyroscopic * &qd) - 2.0 * w * &spin_arm;
         c.view_mut((1, 0), (n, 1)).copy_from(&c_q_theta);
-        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + dot(&a.axial_mass, &q)) + g * co * dot(&a.transverse_mass, &q)
-            - 0.5 * s * dot(&q, &kg_q));
+        k[(0, 0)] = -(g * s * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
+            + g * co * dot(&a.transverse_mass, q.as_slice())
+            - 0.5 * s * dot(&q, kg_q.as_slice()));
         let k_theta_q = 2.0 * w * (&a.spin_mass * &qd) + co * (g * &a.axial_mass - &kg_q) - g * s * &a.transverse_mass;
         k.view_mut((0, 1), (1, n)).copy_from(&k_theta_q.transpose());
-        c[(0, 0)] = 2.0 * dot(&spin_arm, &qd);
+        c[(0, 0)] = 2.0 * dot(&spin_arm, qd.as_slice());
         c.view_mut((0, 1), (1, n)).copy_from(&(2.0 * w * spin_arm).transpose());
     }
 
@@ -364,8 +371,8 @@ impl Dynamics for ArmSystem<'_> {
 // few rows, where nalgebra's general-size kernels spend more on set-up than on arithmetic.
 
 /// xᵀ y.
-fn dot(x: &DVector<f64>, y: &DVector<f64>) -> f64 {
-    x.as_slice().iter().zip(y.as_slice()).map(|(a, b)| a * b).sum()
+pub(super) fn dot(x: &DVector<f64>, y: &[f64]) -> f64 {
+    x.iter().zip(y).map(|(a, b)| a * b).sum()
 }
 
 /// xᵀ A y for a square A.

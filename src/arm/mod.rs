@@ -34,7 +34,7 @@ use crate::drive::DriveError;
 use crate::integrate::IntegrateError;
 
 pub use contact::{ArmContact, ContactState, PointContact};
-pub use dynamics::{ArmSystem, GeneralizedLoad, HubDrive};
+pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
 pub use sim::{ArmSample, ArmSimulation, Energies};
 
 /// Standard gravity, m/s².
@@ -100,8 +100,7 @@ impl StationRows {
     /// [u (m), v (m), φ (rad)] at `q`.
     pub fn displacement(&self, q: &DVector<f64>) -> [f64; 3] {
         // Slices: a few coordinates, called per shape per step.
-        let q = q.as_slice();
-        self.0.each_ref().map(|row| row.as_slice().iter().zip(q).map(|(r, x)| r * x).sum())
+        self.0.each_ref().map(|row| dynamics::dot(row, q.as_slice()))
     }
 }
 

@@ -1,12 +1,12 @@
 //! Time-stepping the arm alone (no contact) and reading its outputs.
 
 use std::borrow::Cow;
-use std::cell::Cell;
 
 use nalgebra::DVector;
 
+use super::dynamics::{HubCache, dot};
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
-use crate::drive::{DriveState, MotionProfile};
+use crate::drive::DriveState;
 use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
 
 /// Energies of the arm, J.
@@ -67,9 +67,8 @@ pub struct ArmSimulation {
     rate_jumps: Vec<(f64, f64)>,
     /// Where the prescribed drive changes piece, s: controlled steps end there.
     breakpoints_s: Vec<f64>,
-    /// The prescribed hub at the last time asked (the outputs, the scene's reach and contact
-    /// checks all ask at the current time).
-    hub_now: Cell<Option<(f64, DriveState)>>,
+    /// The prescribed hub by time, shared by the integrator's evaluations and the outputs.
+    hub: HubCache,
 }
 
 impl ArmSimulation {
@@ -110,7 +109,8 @@ impl ArmSimulation {
             HubDrive::Free { .. } => (Vec::new(), Vec::new()),
         };
         let load = GeneralizedLoad::zero(n);
-        let system = ArmSystem::new(&arm, &drive, &load, &[]);
+        let hub = HubCache::default();
+        let system = ArmSystem::new(&arm, &drive, &load, &[], &hub);
         let state = State::consistent(&system, 0.0, x, v)?;
         let mut sim = ArmSimulation {
             integrator: integrator.build()?,
@@ -122,7 +122,7 @@ impl ArmSimulation {
             state,
             rate_jumps,
             breakpoints_s,
-            hub_now: Cell::new(None),
+            hub,
         };
         sim.apply_rate_jumps_up_to(0.0)?;
         Ok(sim)
@@ -138,7 +138,7 @@ impl ArmSimulation {
             });
         }
         self.state.v[0] = rate_rad_s;
-        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
         self.state.refresh_acceleration(&system)?;
         self.integrator.reset();
         Ok(())
@@ -204,8 +204,7 @@ impl ArmSimulation {
             HubDrive::Prescribed(_) => (0.0, error.as_slice()),
             HubDrive::Free { .. } => (error[0], &error.as_slice()[1..]),
         };
-        let dot = |row: &DVector<f64>| row.iter().zip(q_error).map(|(r, e)| r * e).sum::<f64>();
-        Some(dot(ru).abs().max((dot(rv) + self.arm.length_m() * hub_error_rad).abs()))
+        Some(dot(ru, q_error).abs().max((dot(rv, q_error) + self.arm.length_m() * hub_error_rad).abs()))
     }
 
     fn advance(&mut self, h: f64) -> Result<(), ArmError> {
@@ -222,7 +221,7 @@ impl ArmSimulation {
     /// One integrator step of `h`; where Newton's iteration fails (a contact law's kink inside
     /// the step), the step is retried as two halves, down to 1/64 of it.
     fn advance_halving(&mut self, h: f64, depth: u32) -> Result<(), ArmError> {
-        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
         match self.integrator.step(&system, &mut self.state, h) {
             Err(crate::integrate::IntegrateError::NoConvergence { .. }) if depth < 6 => {
                 // A failed step leaves the state as it was; the integrator's history is dropped.
@@ -254,7 +253,7 @@ impl ArmSimulation {
                 .solve(&(-jump * coupling))
                 .ok_or(ArmError::Integrate(crate::integrate::IntegrateError::SingularMatrix { t: tj }))?;
             self.state.v += dqd;
-            let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
+            let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
             self.state.refresh_acceleration(&system)?;
             self.integrator.reset();
         }
@@ -285,32 +284,19 @@ impl ArmSimulation {
     pub fn kinematics(&self) -> (DriveState, Cow<'_, DVector<f64>>, Cow<'_, DVector<f64>>) {
         let s = &self.state;
         match &self.drive {
-            HubDrive::Prescribed(profile) => (self.prescribed_hub(profile), Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
+            HubDrive::Prescribed(profile) => (self.hub.at(profile, s.t).0, Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
             HubDrive::Free { .. } => {
-                let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
-                let (mut hub, q, qd) = system.split(s.t, &s.x, &s.v);
+                let (mut hub, q, qd) = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub)
+                    .split_free_hub(&s.x, &s.v);
                 hub.accel_rad_s2 = s.a[0];
                 (hub, Cow::Owned(q), Cow::Owned(qd))
             }
         }
     }
 
-    /// The prescribed hub at the current time, sampled once per time.
-    fn prescribed_hub(&self, profile: &MotionProfile) -> DriveState {
-        let t = self.state.t;
-        match self.hub_now.get() {
-            Some((cached_t, hub)) if cached_t == t => hub,
-            _ => {
-                let hub = profile.sample(t);
-                self.hub_now.set(Some((t, hub)));
-                hub
-            }
-        }
-    }
-
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
-        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts);
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
         let s = &self.state;
         let (hub, q, qd) = self.kinematics();
         let qdd = match self.drive {
@@ -318,8 +304,8 @@ impl ArmSimulation {
             HubDrive::Free { .. } => Cow::Owned(s.a.rows(1, q.len()).into_owned()),
         };
         let [ru, rv, _] = self.arm.tip_rows();
-        let dot = |row: &DVector<f64>, x: &DVector<f64>| row.iter().zip(x.iter()).map(|(r, x)| r * x).sum::<f64>();
-        let (u, v, ud, vd) = (dot(ru, &q), dot(rv, &q), dot(ru, &qd), dot(rv, &qd));
+        let (u, v, ud, vd) =
+            (dot(ru, q.as_slice()), dot(rv, q.as_slice()), dot(ru, qd.as_slice()), dot(rv, qd.as_slice()));
         let l = self.arm.length_m();
         let (sn, cs) = hub.angle_rad.sin_cos();
         let w = hub.rate_rad_s;
