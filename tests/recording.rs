@@ -69,3 +69,83 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     let stored_in_contact = forces.iter().filter(|f| **f > 0.0).count();
     assert!(forces.len() < series.t_s.len() && stored_in_contact == in_contact + interpolated, "{stored_in_contact}");
 }
+
+/// The file a run writes, decoded: every message.
+fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) {
+    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let (summary, series) = run_with(&scenario, &options).unwrap();
+    let path = std::env::temp_dir().join(format!("pipearm-blueprint-{}.rrd", std::process::id()));
+    write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
+    let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
+    let messages = re_log_encoding::DecoderApp::decode_eager(file).unwrap().map(Result::unwrap).collect();
+    std::fs::remove_file(&path).ok();
+    (summary, messages)
+}
+
+#[test]
+fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
+    use re_log_types::{LogMsg, StoreKind};
+    let (summary, messages) = recorded_messages();
+    let stores: Vec<_> = messages
+        .iter()
+        .filter_map(|m| match m {
+            LogMsg::SetStoreInfo(s) => Some(s.info.store_id.clone()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(stores.iter().map(|s| s.kind()).collect::<Vec<_>>(), [StoreKind::Recording, StoreKind::Blueprint]);
+    let activation = messages.iter().find_map(|m| match m {
+        LogMsg::BlueprintActivationCommand(c) => Some(c.clone()),
+        _ => None,
+    });
+    let activation = activation.expect("the blueprint is activated");
+    assert!(activation.blueprint_id == stores[1] && activation.make_active && activation.make_default);
+    assert!(matches!(messages.last(), Some(LogMsg::BlueprintActivationCommand(_))), "activation comes last");
+
+    // Blueprint entities: the viewport's root is a logged container; views by class.
+    let mut blueprint_paths = Vec::new();
+    let mut classes = Vec::new();
+    let mut root = None;
+    let mut events = None;
+    for msg in &messages {
+        let LogMsg::ArrowMsg(store, arrow) = msg else { continue };
+        let chunk = re_chunk::Chunk::from_arrow_msg(arrow).unwrap();
+        let entity = chunk.entity_path().to_string();
+        if store.kind() == StoreKind::Blueprint {
+            for descriptor in chunk.component_descriptors() {
+                let column = chunk.components().get_array(descriptor.component).unwrap();
+                match descriptor.component.as_str() {
+                    "ViewBlueprint:class_identifier" => classes.push(format!("{column:?}")),
+                    "ViewportBlueprint:root_container" => root = Some(uuid_path(column)),
+                    _ => {}
+                }
+            }
+            blueprint_paths.push(entity);
+        } else if entity == "/events" {
+            events = Some(chunk);
+        }
+    }
+    let classes = classes.join(" ");
+    for (class, count) in [("\"3D\"", 1), ("\"TimeSeries\"", 3), ("\"TextLog\"", 1)] {
+        assert_eq!(classes.matches(class).count(), count, "{class} in {classes}");
+    }
+    let root = root.expect("the viewport has a root container");
+    assert!(blueprint_paths.contains(&format!("/container/{root}")), "root {root} not in {blueprint_paths:?}");
+    assert_eq!(blueprint_paths.iter().filter(|p| p.starts_with("/container/")).count(), 2, "{blueprint_paths:?}");
+
+    // Events: on sim_time (not static, which would shadow every timed row), three per impact.
+    let events = events.expect("an events chunk");
+    assert!(!events.is_static(), "static events hide the timed ones in the viewer");
+    let impacts: usize = summary.pairs.iter().map(|p| p.impacts.len()).sum();
+    assert!(events.num_rows() >= 3 * impacts, "{} rows for {impacts} impacts", events.num_rows());
+}
+
+/// The UUID of a `RootContainer` column (a list of 16 bytes), as written in blueprint paths.
+fn uuid_path(column: &dyn re_chunk::external::arrow::array::Array) -> String {
+    use re_chunk::external::arrow::array::AsArray;
+    use re_chunk::external::arrow::datatypes::UInt8Type;
+    let bytes = column.as_list::<i32>().values().as_fixed_size_list().values().as_primitive::<UInt8Type>().values();
+    let hex: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
+    format!("{}-{}-{}-{}-{}", &hex[..8], &hex[8..12], &hex[12..16], &hex[16..20], &hex[20..])
+}

@@ -26,7 +26,10 @@
 
 use std::path::Path;
 
-use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical};
+mod rrd;
+
+pub use rrd::BlueprintLayout;
+use rrd::{RrdFile, RrdResult, text};
 
 use crate::run::{PairSummary, RunSummary, Series};
 use crate::scene::{Frame, SceneLayout};
@@ -71,113 +74,46 @@ pub fn write_recording(
     pad_names: &[String],
 ) -> Result<(), RecordError> {
     let shown = path.display().to_string();
-    let rerun_err = |e: &dyn std::fmt::Display| RecordError::Rerun { path: shown.clone(), message: e.to_string() };
+    let rerun_err = |message: String| RecordError::Rerun { path: shown.clone(), message };
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|source| RecordError::Io { path: shown.clone(), source })?;
     }
     let tmp = path.with_extension("rrd.tmp");
     let file = std::fs::File::create(&tmp).map_err(|source| RecordError::Io { path: shown.clone(), source })?;
-    let sink = RrdWriter::new(file).map_err(|e| rerun_err(&e))?;
-    let rec = rerun::RecordingStreamBuilder::new("pipearm")
-        .recording_id(summary.scenario.clone())
-        .with_blueprint(blueprint())
-        .set_sinks(vec![Box::new(sink.clone()) as Box<dyn rerun::sink::LogSink>])
-        .map_err(|e| rerun_err(&e))?;
-    let writer = Writer { rec: &rec, series };
-    writer.plots(pad_names, summary).map_err(|e| rerun_err(&e))?;
-    if let Some(layout) = &series.layout {
-        writer.scene(layout, summary).map_err(|e| rerun_err(&e))?;
+    let written = write_rrd(file, summary, series, pad_names);
+    if let Err(message) = written {
+        std::fs::remove_file(&tmp).ok();
+        return Err(rerun_err(message));
     }
-    writer.events(summary).map_err(|e| rerun_err(&e))?;
-    let text = serde_json::to_string_pretty(summary).map_err(|e| rerun_err(&e))?;
-    rec.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))
-        .map_err(|e| rerun_err(&e))?;
-    rec.flush_blocking().map_err(|e| rerun_err(&e))?;
-    drop(rec);
-    sink.finish().map_err(|e| rerun_err(&e))?;
     std::fs::rename(&tmp, path).map_err(|source| RecordError::Io { path: shown.clone(), source })
 }
 
-type RrdEncoder = rerun::external::re_log_encoding::Encoder<std::io::BufWriter<std::fs::File>>;
-
-/// A rerun sink that encodes on the logging thread, uncompressed: for a file of a few MB written
-/// once, rerun's `FileSink` (a writer thread and LZ4) cost as much as the simulation it records
-/// (docs/performance.md). The file is plain RRD with its footer; `rerun rrd optimize` compresses
-/// it if ever wanted.
-#[derive(Clone)]
-struct RrdWriter(std::sync::Arc<std::sync::Mutex<RrdWriterState>>);
-
-struct RrdWriterState {
-    encoder: Option<RrdEncoder>,
-    /// The first error, reported by [`RrdWriter::finish`] (a sink's `send` cannot fail).
-    error: Option<String>,
-}
-
-impl RrdWriter {
-    fn new(file: std::fs::File) -> Result<Self, String> {
-        use rerun::external::re_log_encoding::EncodingOptions;
-        let version = rerun::external::re_build_info::CrateVersion::LOCAL;
-        let writer = std::io::BufWriter::with_capacity(1 << 20, file);
-        let encoder = RrdEncoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, writer)
-            .map_err(|e| e.to_string())?;
-        Ok(RrdWriter(std::sync::Arc::new(std::sync::Mutex::new(RrdWriterState {
-            encoder: Some(encoder),
-            error: None,
-        }))))
-    }
-
-    fn with_state<T>(&self, f: impl FnOnce(&mut RrdWriterState) -> T) -> T {
-        let mut state = self.0.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        f(&mut state)
-    }
-
-    /// Ends the stream and flushes the file; the first error of the whole recording, if any.
-    fn finish(&self) -> Result<(), String> {
-        self.with_state(|state| {
-            if let Some(error) = state.error.take() {
-                return Err(error);
-            }
-            let mut encoder = state.encoder.take().ok_or("the recording was already finished")?;
-            encoder.finish().map_err(|e| e.to_string())?;
-            let mut writer = encoder.into_inner().map_err(|e| e.to_string())?;
-            std::io::Write::flush(&mut writer).map_err(|e| e.to_string())
-        })
-    }
-}
-
-impl rerun::sink::LogSink for RrdWriter {
-    fn send(&self, msg: rerun::log::LogMsg) {
-        self.with_state(|state| {
-            if let Some(encoder) = state.encoder.as_mut()
-                && let Err(e) = encoder.append(&msg)
-            {
-                state.error.get_or_insert(e.to_string());
-            }
-        });
-    }
-
-    fn flush_blocking(&self, _timeout: std::time::Duration) -> Result<(), rerun::sink::SinkFlushError> {
-        self.with_state(|state| match state.encoder.as_mut().map(|e| e.flush_blocking()) {
-            Some(Err(e)) => Err(rerun::sink::SinkFlushError::failed(e.to_string())),
-            _ => Ok(()),
-        })
-    }
+fn write_rrd(file: std::fs::File, summary: &RunSummary, series: &Series, pad_names: &[String]) -> RrdResult<()> {
+    let mut writer = Writer { out: RrdFile::create(file, "pipearm", &summary.scenario)?, series };
+    writer.plots(pad_names, summary)?;
+    let note = series.layout.as_ref().map(|layout| writer.scene(layout, summary)).transpose()?;
+    writer.events(summary, note)?;
+    let text = serde_json::to_string_pretty(summary).map_err(text)?;
+    writer.out.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
+    writer.out.blueprint(&blueprint())?;
+    writer.out.finish()
 }
 
 /// The view the file opens with: 3D scene left, force / tip deflection / torque right, events
 /// below them.
-fn blueprint() -> Blueprint {
-    let plots = Vertical::new([
-        TimeSeriesView::new("contact force (N)").with_origin("plots/contact_force").into(),
-        TimeSeriesView::new("tip deflection (m)").with_origin("plots/tip_deflection").into(),
-        TimeSeriesView::new("drive torque (N·m)").with_origin("plots/drive_torque").into(),
-        TextLogView::new("events").with_origin("events").into(),
+fn blueprint() -> BlueprintLayout {
+    let view = |class, name, origin| BlueprintLayout::View { class, name, origin };
+    let plots = BlueprintLayout::Vertical(vec![
+        view("TimeSeries", "contact force (N)", "plots/contact_force"),
+        view("TimeSeries", "tip deflection (m)", "plots/tip_deflection"),
+        view("TimeSeries", "drive torque (N·m)", "plots/drive_torque"),
+        view("TextLog", "events", "events"),
     ]);
-    Blueprint::new(Horizontal::new([Spatial3DView::new("scene").with_origin("world").into(), plots.into()]))
+    BlueprintLayout::Horizontal(vec![view("3D", "scene", "world"), plots])
 }
 
 struct Writer<'a> {
-    rec: &'a rerun::RecordingStream,
+    out: RrdFile,
     series: &'a Series,
 }
 
@@ -187,15 +123,15 @@ impl Writer<'_> {
         values.into_iter().zip(&self.series.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
     }
 
-    fn send(&self, entity: &str, values: impl IntoIterator<Item = f64>) -> rerun::RecordingStreamResult<()> {
+    fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RrdResult<()> {
         let times = rerun::TimeColumn::new_duration_secs("sim_time", self.kept(self.series.t_s.iter().copied()));
-        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
-        self.rec.send_columns(entity, [times], columns)
+        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches().map_err(text)?;
+        self.out.send_columns(entity, times, columns)
     }
 
     /// A pad's force at the kept steps with each impact's interpolated peak (summary) inserted at
     /// its time, so the plotted series peaks at the reported peak.
-    fn send_force(&self, entity: &str, forces: &[f64], pair: Option<&PairSummary>) -> rerun::RecordingStreamResult<()> {
+    fn send_force(&mut self, entity: &str, forces: &[f64], pair: Option<&PairSummary>) -> RrdResult<()> {
         let mut rows: Vec<(f64, f64)> = self.kept(self.series.t_s.iter().copied().zip(forces.iter().copied()));
         let peaks = pair.map_or(&[][..], |p| &p.impacts[..]).iter().map(|i| (i.peak_time_s, i.peak_force_n));
         for (t, f) in peaks.filter(|p| p.0.is_finite()) {
@@ -205,11 +141,11 @@ impl Writer<'_> {
             }
         }
         let times = rerun::TimeColumn::new_duration_secs("sim_time", rows.iter().map(|r| r.0));
-        let columns = rerun::Scalars::new(rows.iter().map(|r| r.1)).columns_of_unit_batches()?;
-        self.rec.send_columns(entity, [times], columns)
+        let columns = rerun::Scalars::new(rows.iter().map(|r| r.1)).columns_of_unit_batches().map_err(text)?;
+        self.out.send_columns(entity, times, columns)
     }
 
-    fn plots(&self, pad_names: &[String], summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
+    fn plots(&mut self, pad_names: &[String], summary: &RunSummary) -> RrdResult<()> {
         let s = self.series;
         for (k, axis) in ["axial", "transverse"].iter().enumerate() {
             self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
@@ -234,13 +170,14 @@ impl Writer<'_> {
         Ok(())
     }
 
-    fn scene(&self, layout: &SceneLayout, summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
-        let rec = self.rec;
-        rec.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
+    /// The 3D scene; returns the note on its display scales for the events.
+    fn scene(&mut self, layout: &SceneLayout, summary: &RunSummary) -> RrdResult<String> {
+        let out = &mut self.out;
+        out.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
         // Sized to the arm (15 × 10 m for the 9 m arm), so a lab arm is not lost on a rig's floor.
         let l = layout.length_m as f32;
         let half = (5.0 / 3.0 * l, 0.05 / 9.0 * l, 5.0 / 9.0 * l);
-        rec.log_static(
+        out.log_static(
             "world/ground",
             &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -half.1, 0.0)], [half])
                 .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
@@ -249,12 +186,9 @@ impl Writer<'_> {
         let scale = arrow_scale_n_per_m(summary);
         let centreline = format!("world/centreline_x{magnify:.0}");
         let arrows = format!("world/contact_force_{scale:.0}N_per_m");
-        rec.log_static(
-            "events",
-            &rerun::TextLog::new(format!(
-                "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
-            )),
-        )?;
+        let note = format!(
+            "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
+        );
         let frames = &self.series.frames;
         let times = || rerun::TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
         // One chunk per entity: shapes and poses go in the same columns (send_columns), not a
@@ -269,8 +203,9 @@ impl Writer<'_> {
                 .with_half_sizes(half_sizes.collect::<Vec<_>>())
                 .with_centers(centers.collect::<Vec<_>>())
                 .with_quaternions(quats.collect::<Vec<_>>())
-                .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
-            rec.send_columns(entity.as_str(), [times()], columns)?;
+                .columns(std::iter::repeat_n(indices.len(), frames.len()))
+                .map_err(text)?;
+            out.send_columns(&entity, times(), columns)?;
         }
         let pads = || frames.iter().flat_map(|f| f.pads.iter().zip(&layout.pads));
         let columns = rerun::Boxes3D::update_fields()
@@ -279,15 +214,19 @@ impl Writer<'_> {
             .with_colors(pads().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
             .with_centers(pads().map(|(pose, _)| vec3(pose.translation)).collect::<Vec<_>>())
             .with_quaternions(pads().map(|(pose, _)| quat(pose.rotation)).collect::<Vec<_>>())
-            .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))?;
+            .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))
+            .map_err(text)?;
         // The fill mode is one value per row, not per box: its own partition, the same chunk.
         let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
-        let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
-        rec.send_columns("world/pads", [times()], columns.chain(fill))?;
+        let fill =
+            rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches().map_err(text)?;
+        out.send_columns("world/pads", times(), columns.chain(fill))?;
         let strips: Vec<Vec<[f32; 3]>> = frames.iter().map(|f| centreline_points(layout, f, magnify)).collect();
-        let columns =
-            rerun::LineStrips3D::update_fields().with_strips(strips).columns(std::iter::repeat_n(1, frames.len()))?;
-        rec.send_columns(centreline.as_str(), [times()], columns)?;
+        let columns = rerun::LineStrips3D::update_fields()
+            .with_strips(strips)
+            .columns(std::iter::repeat_n(1, frames.len()))
+            .map_err(text)?;
+        out.send_columns(&centreline, times(), columns)?;
         let origins: Vec<[f32; 3]> =
             frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
         let vectors: Vec<[f32; 3]> = frames
@@ -299,13 +238,15 @@ impl Writer<'_> {
             .with_colors(red)
             .with_origins(origins)
             .with_vectors(vectors)
-            .columns(frames.iter().map(|f| f.contacts.len()))?;
-        rec.send_columns(arrows.as_str(), [times()], columns)?;
-        Ok(())
+            .columns(frames.iter().map(|f| f.contacts.len()))
+            .map_err(text)?;
+        out.send_columns(&arrows, times(), columns)?;
+        Ok(note)
     }
 
-    fn events(&self, summary: &RunSummary) -> rerun::RecordingStreamResult<()> {
-        let rec = self.rec;
+    /// The events at their times: impacts, warnings, the model, the display `note`. (Not static:
+    /// a static text log on `events` would shadow every timed one in the viewer.)
+    fn events(&mut self, summary: &RunSummary, note: Option<String>) -> RrdResult<()> {
         let mut events: Vec<(f64, String, &str)> = Vec::new();
         for pair in &summary.pairs {
             for (k, i) in pair.impacts.iter().enumerate() {
@@ -350,12 +291,16 @@ impl Writer<'_> {
             ));
         }
         events.push((0.0, format!("model {}: {}", summary.model, summary.stiffness_class), rerun::TextLogLevel::INFO));
+        events.extend(note.map(|note| (0.0, note, rerun::TextLogLevel::INFO)));
         events.sort_by(|a, b| a.0.total_cmp(&b.0));
-        for (t, text, level) in events {
-            rec.set_duration_secs("sim_time", t);
-            rec.log("events", &rerun::TextLog::new(text).with_level(level))?;
-        }
-        Ok(())
+        // One chunk: a row per event at its time on `sim_time` (nanoseconds, as `TimeColumn` rounds).
+        let logs: Vec<(f64, rerun::TextLog)> =
+            events.into_iter().map(|(t, message, level)| (t, rerun::TextLog::new(message).with_level(level))).collect();
+        let rows = logs.iter().map(|(t, log)| {
+            let time = rerun::TimePoint::from([(rerun::Timeline::new_duration("sim_time"), nanos(*t))]);
+            (time, log as &dyn rerun::AsComponents)
+        });
+        self.out.log_rows("events", rows)
     }
 }
 
@@ -382,6 +327,11 @@ fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[
             [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
         })
         .collect()
+}
+
+/// Seconds to the nanoseconds of a duration timeline, rounded as `TimeColumn::new_duration_secs` does.
+fn nanos(t_s: f64) -> rerun::TimeCell {
+    rerun::TimeCell::from_duration_nanos((1e9 * t_s).round() as i64)
 }
 
 fn vec3(v: rapier3d_f64::math::Vector) -> [f32; 3] {
