@@ -50,6 +50,29 @@ pub struct Series {
     pub layout: Option<SceneLayout>,
 }
 
+impl Series {
+    /// Empty histories with room for `steps` steps of `pads` pads, `modal_dofs` elastic
+    /// coordinates and `frames` frames: grown by doubling instead, the histories of a run cost
+    /// more in reallocation (copies, and fresh pages the kernel zeroes) than its contact detection.
+    fn with_capacity(steps: usize, pads: usize, modal_dofs: usize, frames: usize) -> Self {
+        Series {
+            t_s: Vec::with_capacity(steps),
+            hub_angle_rad: Vec::with_capacity(steps),
+            hub_rate_rad_s: Vec::with_capacity(steps),
+            hub_accel_rad_s2: Vec::with_capacity(steps),
+            tip_deflection_m: Vec::with_capacity(steps),
+            tip_velocity_m_s: Vec::with_capacity(steps),
+            drive_torque_n_m: Vec::with_capacity(steps),
+            pad_force_n: vec![Vec::with_capacity(steps); pads],
+            energies_j: Vec::with_capacity(steps),
+            modal_q: Vec::with_capacity(steps * modal_dofs),
+            keep: Vec::with_capacity(steps),
+            frames: Vec::with_capacity(frames),
+            ..Series::default()
+        }
+    }
+}
+
 /// How to run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunOptions {
@@ -178,8 +201,11 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let h = scenario.spec.time.step_s;
     let control = free_step_control(scenario);
     let end = scenario.duration_s();
-    let capacity = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
-    let mut series = Series { pad_force_n: vec![Vec::with_capacity(capacity); scene.pads.len()], ..Series::default() };
+    let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
+    // Frames at the frame rate, and a quarter more for the steps in contact (all drawn).
+    let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
+    let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
+    let mut series = Series::with_capacity(steps, scene.pads.len(), modal_dofs, frames);
     let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
     if options.capture_frames {
         series.layout = Some(scene.layout());
