@@ -16,7 +16,7 @@
 //! | `plots/modal/q<i>` | elastic coordinates (modal models) |
 //! | `plots/energy/{kinetic,strain,gravity}` | J |
 //! | `plots/string_slip` | friction clamp slip, m |
-//! | `events` | impacts (start, peak, end), warnings |
+//! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time |
 //! | `summary` | the run summary (JSON) |
 //!
 //! Steps are kept at the record rate in free motion and every step in contact, and each impact's
