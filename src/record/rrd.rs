@@ -83,12 +83,22 @@ impl RrdFile {
         entity: &str,
         rows: impl IntoIterator<Item = (TimePoint, &'a dyn AsComponents)>,
     ) -> RrdResult<()> {
+        self.send_rows(self.recording.clone(), entity, rows)
+    }
+
+    /// [`Self::log_rows`] into `store`.
+    fn send_rows<'a>(
+        &mut self,
+        store: StoreId,
+        entity: &str,
+        rows: impl IntoIterator<Item = (TimePoint, &'a dyn AsComponents)>,
+    ) -> RrdResult<()> {
         let chunk = rows
             .into_iter()
             .fold(Chunk::builder(entity), |b, (time, row)| b.with_archetype(RowId::new(), time, row))
             .build()
             .map_err(text)?;
-        self.send_chunk(self.recording.clone(), &chunk)
+        self.send_chunk(store, &chunk)
     }
 
     /// A static archetype of `entity`.
@@ -151,8 +161,7 @@ impl RrdFile {
     /// A blueprint row: at sequence 0 of the `blueprint` timeline, as rerun's `Blueprint` logs it.
     fn blueprint_row(&mut self, store: &StoreId, entity: &str, archetype: &dyn AsComponents) -> RrdResult<()> {
         let time = TimePoint::from([(rerun::Timeline::new_sequence("blueprint"), 0)]);
-        let chunk = Chunk::builder(entity).with_archetype(RowId::new(), time, archetype).build().map_err(text)?;
-        self.send_chunk(store.clone(), &chunk)
+        self.send_rows(store.clone(), entity, [(time, archetype)])
     }
 
     /// Writes the footer and flushes the file.
