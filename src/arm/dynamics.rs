@@ -237,15 +237,16 @@ impl<'a> ArmSystem<'a> {
     }
 
     /// Drive torque (N·m) and energies (J) together: what every step records, sharing the hub's
-    /// trigonometry and Ĵ(q).
+    /// trigonometry `trig` = (sin θ, cos θ) (the caller has it) and Ĵ(q).
     pub fn torque_and_energies(
         &self,
         hub: &DriveState,
+        trig: (f64, f64),
         q: &DVector<f64>,
         qd: &DVector<f64>,
         qdd: &DVector<f64>,
     ) -> (f64, Energies) {
-        let (trig, inertia) = (hub.angle_rad.sin_cos(), self.pivot_inertia(q));
+        let inertia = self.pivot_inertia(q);
         (self.drive_torque_at(hub, trig, inertia, q, qd, qdd), self.energies_at(hub, trig, inertia, q, qd))
     }
 }
@@ -372,14 +373,14 @@ impl Dynamics for ArmSystem<'_> {
 
 /// xᵀ y.
 pub(super) fn dot(x: &DVector<f64>, y: &[f64]) -> f64 {
-    x.iter().zip(y).map(|(a, b)| a * b).sum()
+    x.as_slice().iter().zip(y).map(|(a, b)| a * b).sum()
 }
 
 /// xᵀ A y for a square A.
 fn bilinear(a: &DMatrix<f64>, x: &DVector<f64>, y: &DVector<f64>) -> f64 {
     let x = x.as_slice();
     let columns = a.as_slice().chunks_exact(x.len().max(1));
-    columns.zip(y.iter()).map(|(column, yj)| yj * column.iter().zip(x).map(|(aij, xi)| aij * xi).sum::<f64>()).sum()
+    columns.zip(y.as_slice()).map(|(column, yj)| yj * column.iter().zip(x).map(|(aij, xi)| aij * xi).sum::<f64>()).sum()
 }
 
 /// f += α A x for a square A.

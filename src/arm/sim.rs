@@ -311,7 +311,7 @@ impl ArmSimulation {
         let w = hub.rate_rad_s;
         // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
         let vel_body = [ud - w * v, vd + w * (l + u)];
-        let (drive_torque_n_m, energies) = system.torque_and_energies(&hub, &q, &qd, &qdd);
+        let (drive_torque_n_m, energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
         ArmSample {
             t_s: s.t,
             hub,
