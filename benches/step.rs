@@ -1,7 +1,9 @@
 //! Cost of one time step: the arm alone at each fidelity, and the whole scene (rapier world,
-//! pads) with each contact method.
+//! pads) with each contact method; and of the speed target's whole run: the default scene read,
+//! simulated for its 20 s and recorded, as `pipearm run` does it.
 //!
-//! `cargo bench --bench step`; the figures are quoted in docs/model.md and docs/accuracy.md.
+//! `cargo bench --bench step` (one core: `taskset -c 0 cargo bench --bench step -- default_run`);
+//! the figures are quoted in docs/model.md, docs/accuracy.md and docs/performance.md.
 
 use std::path::Path;
 
@@ -76,5 +78,32 @@ fn scene_step(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, arm_step, scene_step);
+/// The speed target (docs/performance.md): `pipearm run` on the default scene in-process, from
+/// reading the scenario to the recording and summary written (20 s simulated, so 1000× real time
+/// is 20 ms a run).
+fn default_run(c: &mut Criterion) {
+    use pipearm::record::{write_recording, write_summary};
+    use pipearm::run::{RunOptions, run_with};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let out = std::env::temp_dir().join(format!("pipearm-bench-{}", std::process::id()));
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let mut group = c.benchmark_group("default_run");
+    group.sample_size(40);
+    group.bench_function("with recording", |b| {
+        b.iter(|| {
+            let scenario = Scenario::load(&path).unwrap();
+            let (summary, series) = run_with(&scenario, &options).unwrap();
+            let pads: Vec<String> = scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
+            write_recording(&out.join("default.rrd"), &summary, &series, &pads).unwrap();
+            write_summary(&out.join("default.summary.json"), &summary).unwrap();
+        })
+    });
+    group.bench_function("without recording", |b| {
+        b.iter(|| run_with(&Scenario::load(&path).unwrap(), &RunOptions::default()).unwrap())
+    });
+    group.finish();
+    std::fs::remove_dir_all(&out).ok();
+}
+
+criterion_group!(benches, arm_step, scene_step, default_run);
 criterion_main!(benches);
