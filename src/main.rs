@@ -108,6 +108,18 @@ enum Command {
     },
 }
 
+/// `pipearm run | head` ends as any Unix tool would when the reader goes away: by SIGPIPE,
+/// silently. Rust ignores SIGPIPE, so `println!` would panic on the closed pipe instead (with a
+/// backtrace under `RUST_BACKTRACE`). Files are written before their line is printed, under a
+/// temporary name, so a run ended here leaves no partial file.
+fn exit_quietly_on_closed_pipe() {
+    #[cfg(unix)]
+    // SAFETY: restores the default action of one signal before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
     match s {
         "rigid" => Ok(Fidelity::Rigid),
@@ -121,6 +133,7 @@ fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
 }
 
 fn main() -> Result<()> {
+    exit_quietly_on_closed_pipe();
     match Cli::parse().command {
         Command::Run { scenario, model, out, no_record, record_rate } => run_command(
             &scenario,

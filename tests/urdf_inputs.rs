@@ -149,3 +149,23 @@ fn a_failed_run_writes_nothing() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert!(!out.exists(), "a failed run created {}", out.display());
 }
+
+/// `pipearm run | head`: the reader gone before the first line ends the run by SIGPIPE, as for
+/// any Unix tool, not by a panic on the closed pipe.
+#[cfg(unix)]
+#[test]
+fn a_closed_stdout_ends_a_run_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(["run", "--no-record"])
+        .current_dir(manifest())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(output.status.signal(), Some(libc::SIGPIPE), "{:?}: {stderr}", output.status);
+}
