@@ -311,8 +311,23 @@ impl Scenario {
 
     /// Checks a spec as if read from `path` (robot paths resolve against its folder).
     pub fn from_spec(path: &Path, spec: ScenarioSpec) -> Result<Self, ScenarioError> {
-        let robot_path = path.parent().unwrap_or(Path::new(".")).join(&spec.robot);
-        let robot = load_robot(&robot_path).map_err(|source| ScenarioError::Robot { path: path.into(), source })?;
+        let robot = Self::load_robot(path, &spec)?;
+        Self::from_spec_and_robot(path, spec, robot)
+    }
+
+    /// The robot file `spec` names, as a spec read from `path` resolves it.
+    pub fn robot_path(path: &Path, spec: &ScenarioSpec) -> PathBuf {
+        path.parent().unwrap_or(Path::new(".")).join(&spec.robot)
+    }
+
+    /// Reads and checks the robot `spec` names.
+    pub fn load_robot(path: &Path, spec: &ScenarioSpec) -> Result<Robot, ScenarioError> {
+        load_robot(&Self::robot_path(path, spec)).map_err(|source| ScenarioError::Robot { path: path.into(), source })
+    }
+
+    /// Checks a spec as if read from `path`, with its robot already read by
+    /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
+    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
         let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
         let scenario = Scenario { path: path.into(), spec, robot, motion };
         scenario.validate()?;

@@ -108,13 +108,14 @@ fn a_case_the_guard_stops_is_a_result_not_a_failed_sweep() {
 #[test]
 fn bad_vary_input_names_the_key_and_writes_nothing() {
     let out = out_dir("bad");
-    let cases: [(&[&str], &[&str]); 6] = [
+    let cases: [(&[&str], &[&str]); 7] = [
         (&["drive.nope.x=1"], &["drive.nope.x", "`nope` does not exist under `drive`", "duration_s"]),
         (&["dampeners.3.law.stiffness=1e6"], &["dampeners.3.law.stiffness", "outside the array `dampeners`"]),
         (&["payload.size=2-7/8,9-9/9"], &["case 1 (payload.size=9-9/9)", "default.toml"]),
         (&["time.step_s=0.001,0.5"], &["time.step_s=0.5", "key `time.step_s`"]),
         (&["drive.durationn_s=10"], &["drive.durationn_s=10", "unknown field"]),
         (&["payload.size=2-7/8", "payload.size=4-1/2"], &["payload.size", "varied twice"]),
+        (&["robot=../robots/pipe_arm.urdf,nope.urdf"], &["case 1 (robot=nope.urdf)", "nope.urdf", "cannot read"]),
     ];
     for (args, expected) in cases {
         let error = run(vary(args), &out, None, Shard::ALL).unwrap_err().to_string();

@@ -89,8 +89,8 @@ fn remove_stale(plan: &Plan, cases: &Path, shard: Shard) -> Result<(), SweepErro
     Ok(())
 }
 
-/// Runs the cases `todo` of `plan` (their `scenarios` by index) on `threads` workers (rayon's
-/// default if `None`), writing each case file as it finishes and calling `done` after it. The
+/// Runs the cases `todo` of `plan` (their `scenarios` by index) on the workers of `pool`,
+/// writing each case file as it finishes and calling `done` after it. The
 /// longest cases go first and each worker takes the next as it frees up, so the workers finish
 /// together to within one of the shortest cases. Stops at the first failure and returns it.
 pub fn run_cases(
@@ -98,10 +98,9 @@ pub fn run_cases(
     scenarios: &[Scenario],
     dir: &Path,
     todo: &[usize],
-    threads: Option<usize>,
+    pool: &rayon::ThreadPool,
     done: &(dyn Fn(&Case) + Sync),
 ) -> Result<(), SweepError> {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads.unwrap_or(0)).build()?;
     let queue = longest_first(todo, scenarios);
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<SweepError>> = Mutex::new(None);

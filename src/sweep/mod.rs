@@ -114,13 +114,14 @@ pub enum Progress {
 /// Plans and checks every case (writing nothing if one fails), runs this shard's cases that are
 /// not current, and merges if the shard is the whole sweep.
 pub fn sweep(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, SweepError> {
-    let (plan, scenarios) = Plan::build(&request.scenario, request.vary.clone())?;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build()?;
+    let (plan, scenarios) = pool.install(|| Plan::build(&request.scenario, request.vary.clone()))?;
     let work = prepare(&plan, &request.out, request.shard)?;
     progress(Progress::Start { todo: work.todo.len() });
-    run_cases(&plan, &scenarios, &request.out, &work.todo, request.threads, &|case| {
+    run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| {
         progress(Progress::Done { index: case.index })
     })?;
-    let merged = if request.shard == Shard::ALL { Some(merge(&request.out)?) } else { None };
+    let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };
     Ok(Report { cases: plan.cases.len(), ran: work.todo.len(), current: work.current, merged })
 }
 

@@ -1,13 +1,15 @@
 //! The plan of a sweep: every case's values, its scenario (built from the base file with the
 //! values set, then validated) and its hash, in index order (the last key varies fastest).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::vary::{Vary, show};
 use super::{SweepError, io_error};
+use crate::robot::Robot;
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
 
 /// What a sweep runs; written to `DIR/plan.json` by every shard.
@@ -44,19 +46,41 @@ impl Case {
 
 impl Plan {
     /// Builds and validates every case of `vary` over the scenario file at `path`; returns the
-    /// plan and the cases' scenarios (by index). Fails on the first bad key or case.
+    /// plan and the cases' scenarios (by index). Fails on the bad key or case of lowest index.
+    ///
+    /// Each robot file is read once, and the cases are checked in parallel on the current rayon
+    /// pool (each builds its FE beam): for a sweep of short runs, planning one case after
+    /// another, each reading its robot, was a fifth of the whole command and held its parallel
+    /// efficiency under 80 % (docs/sweeps.md).
     pub fn build(path: &Path, vary: Vec<Vary>) -> Result<(Plan, Vec<Scenario>), SweepError> {
         let base = read_document(path)?;
         if let Some(key) = duplicate_key(&vary) {
             return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
         }
-        let mut cases = Vec::new();
-        let mut scenarios = Vec::new();
+        let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
+        let mut robots: HashMap<PathBuf, Robot> = HashMap::new();
+        let mut specs = Vec::new();
         for (index, values) in product(&vary).into_iter().enumerate() {
-            let (case, scenario) = build_case(path, &base, index, values, &vary)?;
-            cases.push(case);
-            scenarios.push(scenario);
+            let case = Case { index, hash: String::new(), values: values.iter().cloned().collect() };
+            let spec = case_spec(path, &base, &values).map_err(|e| e.for_case(&case, &keys))?;
+            let robot_path = Scenario::robot_path(path, &spec);
+            if !robots.contains_key(&robot_path) {
+                let robot = Scenario::load_robot(path, &spec).map_err(|e| case_error(&case, &keys, e))?;
+                robots.insert(robot_path.clone(), robot);
+            }
+            specs.push((case, spec, robot_path));
         }
+        let checked: Vec<Result<(Case, Scenario), SweepError>> = specs
+            .into_par_iter()
+            .map(|(mut case, spec, robot_path)| {
+                let checked = Scenario::from_spec_and_robot(path, spec, robots[&robot_path].clone())
+                    .and_then(|scenario| Ok((case_hash(&scenario)?, scenario)));
+                let (hash, scenario) = checked.map_err(|e| case_error(&case, &keys, e))?;
+                case.hash = hash;
+                Ok((case, scenario))
+            })
+            .collect();
+        let (cases, scenarios) = checked.into_iter().collect::<Result<Vec<_>, _>>()?.into_iter().unzip();
         Ok((Plan { scenario: path.into(), vary, cases }, scenarios))
     }
 
@@ -92,27 +116,36 @@ fn product(vary: &[Vary]) -> Vec<Vec<(String, toml::Value)>> {
     })
 }
 
-fn build_case(
-    path: &Path,
-    base: &toml::Value,
-    index: usize,
-    values: Vec<(String, toml::Value)>,
-    vary: &[Vary],
-) -> Result<(Case, Scenario), SweepError> {
-    let mut document = base.clone();
-    for (key, value) in &values {
-        set_key(&mut document, key, value.clone()).map_err(|message| SweepError::Key { key: key.clone(), message })?;
+/// Why a case's spec could not be made: a varied key that leads nowhere, or a spec that does
+/// not parse.
+enum SpecError {
+    Key(SweepError),
+    Scenario(ScenarioError),
+}
+
+impl SpecError {
+    fn for_case(self, case: &Case, keys: &[&str]) -> SweepError {
+        match self {
+            SpecError::Key(e) => e,
+            SpecError::Scenario(e) => case_error(case, keys, e),
+        }
     }
-    let mut case = Case { index, hash: String::new(), values: values.into_iter().collect() };
-    let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
-    let failed = |source| SweepError::Case { index, values: case.describe(&keys), error: Box::new(source) };
-    let spec: ScenarioSpec = document
-        .try_into()
-        .map_err(|e: toml::de::Error| failed(ScenarioError::Parse { path: path.into(), message: e.to_string() }))?;
-    let scenario = Scenario::from_spec(path, spec).map_err(failed)?;
-    let hash = case_hash(&scenario).map_err(failed)?;
-    case.hash = hash;
-    Ok((case, scenario))
+}
+
+fn case_error(case: &Case, keys: &[&str], error: ScenarioError) -> SweepError {
+    SweepError::Case { index: case.index, values: case.describe(keys), error: Box::new(error) }
+}
+
+/// The base document with the case's values set, as a scenario spec.
+fn case_spec(path: &Path, base: &toml::Value, values: &[(String, toml::Value)]) -> Result<ScenarioSpec, SpecError> {
+    let mut document = base.clone();
+    for (key, value) in values {
+        set_key(&mut document, key, value.clone())
+            .map_err(|message| SpecError::Key(SweepError::Key { key: key.clone(), message }))?;
+    }
+    document.try_into().map_err(|e: toml::de::Error| {
+        SpecError::Scenario(ScenarioError::Parse { path: path.into(), message: e.to_string() })
+    })
 }
 
 /// Sets the dotted `key` in `document`; every segment but the last must exist (a numeric

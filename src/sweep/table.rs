@@ -3,7 +3,10 @@
 //! every scalar of the summary but the per-impact arrays) and the chart. The bytes depend only on
 //! the case files, so any split into shards merges to the same files.
 
+use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
+
+use rayon::prelude::*;
 
 use super::cases::case_path;
 use super::flat::{Scalar, flatten};
@@ -71,8 +74,10 @@ fn read_rows(plan: &Plan, dir: &Path) -> Result<Vec<Row>, SweepError> {
         let more = if missing.len() > 20 { format!("; and {} more", missing.len() - 20) } else { String::new() };
         return Err(SweepError::Missing { dir: dir.into(), count: missing.len(), missing: shown + &more });
     }
+    // In parallel on the caller's pool: reading and flattening is most of a merge, and a merge
+    // is serial time between a sweep's runs and its end (docs/sweeps.md, parallel efficiency).
     plan.cases
-        .iter()
+        .par_iter()
         .map(|c| {
             let path = case_path(dir, c);
             let text = std::fs::read_to_string(&path).map_err(io_error(&path))?;
@@ -96,9 +101,10 @@ fn json(rows: &[Row]) -> String {
 /// the order first met.
 fn csv(plan: &Plan, rows: &[Row]) -> String {
     let mut summary_columns: Vec<&str> = Vec::new();
+    let mut seen = HashSet::new();
     for (path, _) in rows.iter().flat_map(|r| &r.scalars) {
         if let Some(name) = path.strip_prefix("summary.")
-            && !summary_columns.contains(&name)
+            && seen.insert(name)
         {
             summary_columns.push(name);
         }
@@ -107,12 +113,13 @@ fn csv(plan: &Plan, rows: &[Row]) -> String {
     let header = ["index", "hash"].into_iter().chain(keys.iter().copied()).chain(["outcome"]);
     let mut out = line(header.chain(summary_columns.iter().copied()));
     for (row, case) in rows.iter().zip(&plan.cases) {
-        let cell = |path: String| row.get(&path).map(Scalar::cell).unwrap_or_default();
+        let by_path: HashMap<&str, &Scalar> = row.scalars.iter().map(|(k, v)| (k.as_str(), v)).collect();
+        let get = |path: &str| by_path.get(path).copied();
+        let cell = |path: String| get(&path).map(Scalar::cell).unwrap_or_default();
         // An inline table or array value has no single scalar: the plan shows it as TOML.
-        let value = |k: &&str| row.get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), Scalar::cell);
+        let value = |k: &&str| get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), Scalar::cell);
         // `ran`, or where the guard stopped the run (its reason and advice are in the JSON).
-        let outcome =
-            row.get("diverged.t_s").map_or_else(|| "ran".to_string(), |t| format!("diverged at {} s", t.cell()));
+        let outcome = get("diverged.t_s").map_or_else(|| "ran".to_string(), |t| format!("diverged at {} s", t.cell()));
         let cells: Vec<String> = [cell("index".into()), cell("hash".into())]
             .into_iter()
             .chain(keys.iter().map(value))
