@@ -46,7 +46,8 @@ impl Case {
 
 impl Plan {
     /// Builds and validates every case of `vary` over the scenario file at `path`; returns the
-    /// plan and the cases' scenarios (by index). Fails on the bad key or case of lowest index.
+    /// plan and the cases' scenarios (by index). Fails on the first key, spec or robot file in
+    /// index order that is bad, else on the case of lowest index that does not validate.
     ///
     /// Each robot file is read once, and the cases are checked in parallel on the current rayon
     /// pool (each builds its FE beam): for a sweep of short runs, planning one case after
@@ -62,7 +63,7 @@ impl Plan {
         let mut specs = Vec::new();
         for (index, values) in product(&vary).into_iter().enumerate() {
             let case = Case { index, hash: String::new(), values: values.iter().cloned().collect() };
-            let spec = case_spec(path, &base, &values).map_err(|e| e.for_case(&case, &keys))?;
+            let spec = case_spec(path, &base, &values, &case, &keys)?;
             let robot_path = Scenario::robot_path(path, &spec);
             if !robots.contains_key(&robot_path) {
                 let robot = Scenario::load_robot(path, &spec).map_err(|e| case_error(&case, &keys, e))?;
@@ -116,35 +117,26 @@ fn product(vary: &[Vary]) -> Vec<Vec<(String, toml::Value)>> {
     })
 }
 
-/// Why a case's spec could not be made: a varied key that leads nowhere, or a spec that does
-/// not parse.
-enum SpecError {
-    Key(SweepError),
-    Scenario(ScenarioError),
-}
-
-impl SpecError {
-    fn for_case(self, case: &Case, keys: &[&str]) -> SweepError {
-        match self {
-            SpecError::Key(e) => e,
-            SpecError::Scenario(e) => case_error(case, keys, e),
-        }
-    }
-}
-
 fn case_error(case: &Case, keys: &[&str], error: ScenarioError) -> SweepError {
     SweepError::Case { index: case.index, values: case.describe(keys), error: Box::new(error) }
 }
 
-/// The base document with the case's values set, as a scenario spec.
-fn case_spec(path: &Path, base: &toml::Value, values: &[(String, toml::Value)]) -> Result<ScenarioSpec, SpecError> {
+/// The base document with `values` set in the order varied (a key may lie inside an earlier
+/// one's table), as `case`'s scenario spec: fails on a varied key that leads nowhere, or on a
+/// spec that does not parse (naming the case).
+fn case_spec(
+    path: &Path,
+    base: &toml::Value,
+    values: &[(String, toml::Value)],
+    case: &Case,
+    keys: &[&str],
+) -> Result<ScenarioSpec, SweepError> {
     let mut document = base.clone();
     for (key, value) in values {
-        set_key(&mut document, key, value.clone())
-            .map_err(|message| SpecError::Key(SweepError::Key { key: key.clone(), message }))?;
+        set_key(&mut document, key, value.clone()).map_err(|message| SweepError::Key { key: key.clone(), message })?;
     }
     document.try_into().map_err(|e: toml::de::Error| {
-        SpecError::Scenario(ScenarioError::Parse { path: path.into(), message: e.to_string() })
+        case_error(case, keys, ScenarioError::Parse { path: path.into(), message: e.to_string() })
     })
 }
 
