@@ -2,11 +2,13 @@
 # Parallel efficiency of a 16-case sweep (docs/sweeps.md): wall time with --threads 1 and
 # --threads 2, interleaved, ROUNDS times each, fresh output folders (nothing skipped); prints
 # every time, and over the rounds no other process disturbed (/proc/stat), the median times,
-# efficiency = t1 / (2 t2), and the cpu time each used. Usage: sweep_efficiency.sh [PIPEARM] [ROUNDS]
+# efficiency = t1 / (2 t2), and the cpu time each used.
+# Usage: sweep_efficiency.sh [PIPEARM] [ROUNDS] [EXTRA SWEEP ARGS, e.g. --vary time.step_s=0.001]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PIPEARM=${1:-pipearm}
 ROUNDS=${2:-7}
+EXTRA=("${@:3}")
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 HZ=$(getconf CLK_TCK)
@@ -18,7 +20,7 @@ run() { # threads → "wall cpu foreign" seconds: cpu = ours (user + system), fo
   w0=$EPOCHREALTIME
   /usr/bin/time -f '%U %S' -o "$TMP/time" "$PIPEARM" sweep scenarios/default.toml \
     --vary drive.duration_s=10..25:5 --vary 'payload.size=2-3/8,2-7/8,3-1/2,4-1/2' \
-    --threads "$1" --out "$TMP/out" >/dev/null
+    "${EXTRA[@]}" --threads "$1" --out "$TMP/out" >/dev/null
   w1=$EPOCHREALTIME
   b1=$(busy)
   # wall to the microsecond ($EPOCHREALTIME; /usr/bin/time's is in hundredths, too coarse for a
