@@ -59,7 +59,8 @@ impl Plan {
             return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
         }
         let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
-        let mut robots: HashMap<PathBuf, Robot> = HashMap::new();
+        // Each robot file once: the robot, and the file's bytes for the cases' hashes.
+        let mut robots: HashMap<PathBuf, (Robot, Vec<u8>)> = HashMap::new();
         let mut specs = Vec::new();
         for (index, values) in product(&vary).into_iter().enumerate() {
             let case = Case { index, hash: String::new(), values: values.iter().cloned().collect() };
@@ -67,15 +68,19 @@ impl Plan {
             let robot_path = Scenario::robot_path(path, &spec);
             if !robots.contains_key(&robot_path) {
                 let robot = Scenario::load_robot(path, &spec).map_err(|e| case_error(&case, &keys, e))?;
-                robots.insert(robot_path.clone(), robot);
+                let bytes = std::fs::read(&robot_path).map_err(|source| {
+                    case_error(&case, &keys, ScenarioError::Io { path: robot_path.clone(), source })
+                })?;
+                robots.insert(robot_path.clone(), (robot, bytes));
             }
             specs.push((case, spec, robot_path));
         }
         let checked: Vec<Result<(Case, Scenario), SweepError>> = specs
             .into_par_iter()
             .map(|(mut case, spec, robot_path)| {
-                let checked = Scenario::from_spec_and_robot(path, spec, robots[&robot_path].clone())
-                    .and_then(|scenario| Ok((case_hash(&scenario)?, scenario)));
+                let (robot, robot_bytes) = &robots[&robot_path];
+                let checked = Scenario::from_spec_and_robot(path, spec, robot.clone())
+                    .and_then(|scenario| Ok((case_hash(&scenario, robot_bytes)?, scenario)));
                 let (hash, scenario) = checked.map_err(|e| case_error(&case, &keys, e))?;
                 case.hash = hash;
                 Ok((case, scenario))
@@ -199,15 +204,12 @@ fn array_index(len: usize, segment: &str, at: &str) -> Result<usize, String> {
     }
 }
 
-/// FNV-1a 64 of the case's canonical TOML spec followed by the bytes of its robot file, as 16
+/// FNV-1a 64 of the case's canonical TOML spec followed by `robot_bytes`, its robot file, as 16
 /// hex digits: equal for equal inputs, so a rerun can tell a current case file.
-pub fn case_hash(scenario: &Scenario) -> Result<String, ScenarioError> {
-    let path = &scenario.path;
+pub fn case_hash(scenario: &Scenario, robot_bytes: &[u8]) -> Result<String, ScenarioError> {
     let canonical = toml::to_string(&scenario.spec)
-        .map_err(|e| ScenarioError::Parse { path: path.clone(), message: format!("canonical form: {e}") })?;
-    let robot = path.parent().unwrap_or(Path::new(".")).join(&scenario.spec.robot);
-    let robot_bytes = std::fs::read(&robot).map_err(|source| ScenarioError::Io { path: robot, source })?;
-    Ok(format!("{:016x}", fnv1a64(&[canonical.as_bytes(), &robot_bytes])))
+        .map_err(|e| ScenarioError::Parse { path: scenario.path.clone(), message: format!("canonical form: {e}") })?;
+    Ok(format!("{:016x}", fnv1a64(&[canonical.as_bytes(), robot_bytes])))
 }
 
 /// FNV-1a, 64 bits, over the parts in order.
