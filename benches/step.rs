@@ -11,14 +11,15 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use pipearm::arm::{ArmSimulation, Fidelity};
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
-use pipearm::scenario::{ContactMethod, Scenario};
+use pipearm::model::{ContactMethod, Model};
+use pipearm::scenario::Scenario;
 use pipearm::scene::Scene;
 
 /// The default scene under generalized-α: stable for every fidelity at the scene's step (its own
 /// RK4 is not, for eight modes or the FE arm).
-fn default_scenario() -> Scenario {
-    let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
-    s.spec.integrator = IntegratorKind::default();
+fn default_scenario() -> Model {
+    let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model;
+    s.integrator = IntegratorKind::default();
     s
 }
 
@@ -37,18 +38,18 @@ fn arm_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("arm_step");
     for fidelity in FIDELITIES {
         let arm = scenario.arm_model(fidelity).unwrap();
-        let mut sim = ArmSimulation::new(arm, scenario.hub_drive(), scenario.spec.integrator).unwrap();
+        let mut sim = ArmSimulation::new(arm, scenario.hub_drive(), scenario.integrator).unwrap();
         // Start mid-lift, where every term of the equations is active.
-        sim.run_until(5.0, scenario.spec.time.step_s, |_| ()).unwrap();
+        sim.run_until(5.0, scenario.time.step_s, |_| ()).unwrap();
         group.bench_function(BenchmarkId::from_parameter(fidelity), |b| {
-            b.iter(|| sim.step(scenario.spec.time.step_s).unwrap())
+            b.iter(|| sim.step(scenario.time.step_s).unwrap())
         });
     }
     // The shipped default: RK4 on three modes.
     let arm = scenario.arm_model(Fidelity::Modal { modes: 3 }).unwrap();
     let mut sim = ArmSimulation::new(arm, scenario.hub_drive(), IntegratorKind::Rk4).unwrap();
-    sim.run_until(5.0, scenario.spec.time.step_s, |_| ()).unwrap();
-    group.bench_function("modal(3) rk4", |b| b.iter(|| sim.step(scenario.spec.time.step_s).unwrap()));
+    sim.run_until(5.0, scenario.time.step_s, |_| ()).unwrap();
+    group.bench_function("modal(3) rk4", |b| b.iter(|| sim.step(scenario.time.step_s).unwrap()));
     group.finish();
 }
 
@@ -58,16 +59,16 @@ fn arm_step(c: &mut Criterion) {
 fn scene_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("scene_step_at_the_stop");
     let base = default_scenario();
-    let mut cases: Vec<(String, Scenario, Fidelity)> = [Fidelity::Rigid, Fidelity::Modal { modes: 3 }, Fidelity::Fe]
+    let mut cases: Vec<(String, Model, Fidelity)> = [Fidelity::Rigid, Fidelity::Modal { modes: 3 }, Fidelity::Fe]
         .into_iter()
         .map(|f| (format!("compliant {f}"), base.clone(), f))
         .collect();
     let mut rapier = base.clone();
-    rapier.spec.contact.method = ContactMethod::Rapier;
-    rapier.spec.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
+    rapier.contact.method = ContactMethod::Rapier;
+    rapier.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
     cases.push(("rapier modal(3)".into(), rapier, Fidelity::Modal { modes: 3 }));
     for (name, scenario, fidelity) in cases {
-        let h = scenario.spec.time.step_s;
+        let h = scenario.time.step_s;
         let mut scene = Scene::with_fidelity(&scenario, fidelity).unwrap();
         // Up to the stop: from here on the arm stays within reach of its pad.
         while scene.arm.time_s() < 14.9 {
@@ -92,14 +93,14 @@ fn default_run(c: &mut Criterion) {
     group.bench_function("with recording", |b| {
         b.iter(|| {
             let scenario = Scenario::load(&path).unwrap();
-            let (summary, series) = run_with(&scenario, &options).unwrap();
-            let pads: Vec<String> = scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
+            let (summary, series) = run_with(&scenario.model, &options).unwrap();
+            let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
             write_recording(&out.join("default.rrd"), &summary, &series, &pads).unwrap();
             write_summary(&out.join("default.summary.json"), &summary).unwrap();
         })
     });
     group.bench_function("without recording", |b| {
-        b.iter(|| run_with(&Scenario::load(&path).unwrap(), &RunOptions::default()).unwrap())
+        b.iter(|| run_with(&Scenario::load(&path).unwrap().model, &RunOptions::default()).unwrap())
     });
     group.finish();
     std::fs::remove_dir_all(&out).ok();

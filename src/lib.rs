@@ -1,10 +1,12 @@
 //! pipearm: flexible pipe-handling arms on oil rigs and the impacts they take on their rubber
 //! dampeners.
 //!
-//! Data flows one way: a [`scenario`] (with its [`robot`]) → a model ([`beam`] reduced by
-//! [`arm`]) → the step loop of a [`scene`] ([`integrate`], driven by [`drive`], with
-//! [`contact`]) → [`run`] series → ([`record`], [`analysis`]) → summary. Physics functions are
-//! pure and in SI units; the conventions are stated in each module.
+//! Data flows one way: a [`scenario`] file (with its [`robot`]) is checked and resolved once into a
+//! [`model`] of the machine and scene → the arm ([`beam`] reduced by [`arm`], at the fidelity
+//! [`select`] picks) → the step loop of a [`scene`] ([`integrate`], driven by [`drive`], with
+//! [`contact`] laws) → [`run`] series → ([`record`], [`analysis`]) → summary. No module below
+//! [`scenario`] imports it. Physics functions are pure and in SI units; the conventions are stated
+//! in each module.
 
 pub mod analysis;
 pub mod arm;
@@ -14,6 +16,7 @@ pub mod contact;
 pub mod drive;
 pub mod guard;
 pub mod integrate;
+pub mod model;
 pub mod record;
 pub mod regression;
 pub mod robot;

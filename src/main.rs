@@ -159,12 +159,13 @@ fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
     }
     let started = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
-    let (summary, series) = run_with(&scenario, &options).with_context(|| format!("{}: running", path.display()))?;
+    let model = &scenario.model;
+    let (summary, series) = run_with(model, &options).with_context(|| format!("{}: running", path.display()))?;
     print_summary(path, &summary);
     if options.capture_frames {
         let started = std::time::Instant::now();
-        let name = &scenario.spec.name;
-        let pads: Vec<String> = scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
+        let name = &model.name;
+        let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
         let rrd = out.join(format!("{name}.rrd"));
         let json = out.join(format!("{name}.summary.json"));
         write_recording(&rrd, &summary, &series, &pads)?;
@@ -196,8 +197,8 @@ fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool)
     let mut report = Vec::new();
     for path in &scenarios {
         let scenario = Scenario::load(path)?;
-        let name = scenario.spec.name.clone();
-        let (summary, _) = run(&scenario, None).with_context(|| format!("{}: running", path.display()))?;
+        let name = scenario.model.name.clone();
+        let (summary, _) = run(&scenario.model, None).with_context(|| format!("{}: running", path.display()))?;
         let file = baseline_path(baselines, &name);
         if bless {
             let previous = read_baseline(&file, &name, path).ok();
@@ -240,7 +241,7 @@ fn seed(only: Option<&str>, out: &Path) -> Result<()> {
         let variants = pipearm::seed::run_family(&files, true)?;
         let dir = out.join("seed").join(&section);
         for v in &variants {
-            let pads: Vec<String> = v.scenario.spec.dampeners.iter().map(|d| d.name.clone()).collect();
+            let pads: Vec<String> = v.scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
             write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series, &pads)?;
         }
         let chart = out.join("seed").join(format!("{section}.svg"));
@@ -266,16 +267,17 @@ fn bench(scenarios: &[PathBuf], out: &Path, repeats: usize, quick: bool) -> Resu
                 .expect("a valid template")
                 .progress_chars("=> "),
         );
-        bar.set_prefix(scenario.spec.name.clone());
+        let model = &scenario.model;
+        bar.set_prefix(model.name.clone());
         let mut progress = |label: &str, done: usize, total: usize| {
             bar.set_length(total as u64);
             bar.set_position(done as u64);
             bar.set_message(label.to_string());
         };
         let result =
-            bench::bench(scenario, &options, &mut progress).with_context(|| format!("{}: bench", path.display()))?;
+            bench::bench(model, &options, &mut progress).with_context(|| format!("{}: bench", path.display()))?;
         bar.finish_and_clear();
-        let dir = out.join(&scenario.spec.name);
+        let dir = out.join(&model.name);
         std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
         std::fs::write(dir.join("points.csv"), bench::points_csv(&result))?;
         std::fs::write(dir.join("stability.csv"), bench::stability_csv(&result.stability))?;
@@ -466,7 +468,7 @@ fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result
     if !(spin_rad_s.is_finite() && spin_rad_s >= 0.0) {
         bail!("--spin = {spin_rad_s}: allowed a finite rate >= 0 rad/s");
     }
-    let beam = BeamModel::new(scenario.beam_spec()?)?;
+    let beam = BeamModel::new(scenario.model.beam_spec()?)?;
     let basis = if spin_rad_s > 0.0 {
         beam.modes_spinning(spin_rad_s, stiffening).with_context(|| format!("at {spin_rad_s} rad/s"))?
     } else {
@@ -481,7 +483,7 @@ fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result
     let stiffening_note = if stiffening { "" } else { " without stiffening" };
     println!(
         "arm of {} ({} elements, L = {l} m, {} DOFs), spin {spin_rad_s} rad/s{stiffening_note}",
-        scenario.robot.name,
+        scenario.model.robot.name,
         beam.elements.len(),
         beam.dofs()
     );

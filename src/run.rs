@@ -9,7 +9,7 @@ use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::integrate::StepControl;
-use crate::scenario::Scenario;
+use crate::model::{DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 
 /// Time histories of a run, one entry per step (the initial state included).
@@ -181,32 +181,47 @@ pub struct RunSummary {
     pub stability_limit_omega_dt: Option<f64>,
 }
 
-/// Runs a scenario at `fidelity` (its own if `None`), capturing no frames.
-pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummary, Series), SceneError> {
-    run_with(scenario, &RunOptions { fidelity, ..RunOptions::default() })
+/// Runs a model at `fidelity` (its own if `None`), capturing no frames.
+pub fn run(model: &Model, fidelity: Option<Fidelity>) -> Result<(RunSummary, Series), SceneError> {
+    run_with(model, &RunOptions { fidelity, ..RunOptions::default() })
 }
 
-/// Runs a scenario with `options`.
-pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
-    // The beam and its modes, built once for the model choice and the model.
-    let beam = crate::beam::BeamModel::new(scenario.beam_spec()?).map_err(ArmError::from)?;
-    let modes = beam.modes().map_err(ArmError::from)?;
+/// Runs a model with `options`.
+pub fn run_with(model: &Model, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
+    let (summary, series) = run_partial(model, options);
+    summary.map(|summary| (summary, series))
+}
+
+/// Runs a model with `options` and returns its series whether it finished or not: up to the
+/// divergence for a run the guard stopped (empty if the scene could not be built).
+pub fn run_partial(model: &Model, options: &RunOptions) -> (Result<RunSummary, SceneError>, Series) {
+    let mut series = Series::default();
+    let summary = simulate(model, options, &mut series);
+    (summary, series)
+}
+
+/// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
+fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
+    // The beam and its modes, built once for the model choice and the arm.
+    let beam = crate::beam::BeamModel::new(model.beam_spec()?)?;
+    let modes = beam.modes()?;
     let choice = match options.fidelity {
         Some(fidelity) => crate::select::Choice { fidelity, reason: "set on the command line".into() },
-        None => scenario.fidelity_for(&beam, &modes)?,
+        None => crate::select::fidelity_for(model, &beam, &modes)?,
     };
     let fidelity = choice.fidelity;
-    let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, scenario.arm_options())?;
-    let mut scene = Scene::with_arm(scenario, arm)?;
-    let h = scenario.spec.time.step_s;
-    let control = free_step_control(scenario);
-    let end = scenario.duration_s();
+    let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, model.arm_options())?;
+    let mut scene = Scene::with_arm(model, arm)?;
+    let h = model.time.step_s;
+    let control = free_step_control(model);
+    let end = model.duration_s();
     let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
     // Frames at the frame rate, and a quarter more for the steps in contact (all drawn).
     let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
-    let mut series = Series::with_capacity(steps, scene.pads.len(), modal_dofs, frames);
-    let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
+    let pads = scene.pads().count();
+    *series = Series::with_capacity(steps, pads, modal_dofs, frames);
+    let mut trackers = vec![ImpactTracker::default(); pads];
     if options.capture_frames {
         series.layout = Some(scene.layout());
     }
@@ -219,10 +234,9 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     };
     let started = Instant::now();
     let first = scene.arm.sample();
-    let mut guard = DivergenceGuard::new(&first, gravity_span_j(scenario, &scene)?);
-    let string_length_m = scenario.pipe_string()?.map_or(f64::INFINITY, |s| s.length_m);
-    record(&scene, &first, &mut series, &mut trackers);
-    keeper.keep(&scene, &mut series, options.capture_frames, false);
+    let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
+    record(&scene, &first, series, &mut trackers);
+    keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
     // be a step too short to take.
@@ -236,33 +250,33 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
         match &control {
             Some(control) if scene.free_step_allowed(free_h) => {
                 let (_, next) =
-                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(scenario, &scene, e))?;
+                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
                 free_h = next;
             }
             _ => {
-                scene.step(last_within(h)).map_err(|e| diverged_step(scenario, &scene, e))?;
+                scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
                 free_h = h;
             }
         }
         let sample = scene.arm.sample();
-        guard.check(&sample).map_err(|d| divergence_error(scenario, &scene, d))?;
-        if let Some(what) = scene_fault(&scene, string_length_m) {
-            return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
+        guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
+        if let Some(what) = scene.fault() {
+            return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
         }
-        record(&scene, &sample, &mut series, &mut trackers);
-        keeper.keep(&scene, &mut series, options.capture_frames, end - scene.arm.time_s() <= sliver);
+        record(&scene, &sample, series, &mut trackers);
+        keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
-    let mut summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
+    let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
-    Ok((summary, series))
+    Ok(summary)
 }
 
-/// The error control of free-motion steps, if the scenario asks for longer free steps.
-fn free_step_control(scenario: &Scenario) -> Option<StepControl> {
-    let t = &scenario.spec.time;
+/// The error control of free-motion steps, if the model asks for longer free steps.
+fn free_step_control(model: &Model) -> Option<StepControl> {
+    let t = &model.time;
     t.free_step_s.filter(|&free| free > t.step_s).map(|free| StepControl {
-        tolerance: t.tolerance_m.unwrap_or(crate::scenario::DEFAULT_TOLERANCE_M),
+        tolerance: t.tolerance_m.unwrap_or(DEFAULT_TOLERANCE_M),
         min_step_s: t.step_s,
         max_step_s: free,
     })
@@ -281,7 +295,7 @@ struct Keeper {
 impl Keeper {
     fn keep(&mut self, scene: &Scene, series: &mut Series, capture: bool, last: bool) {
         let t = scene.arm.time_s();
-        let in_contact = scene.pads.iter().any(|p| p.force_n > 0.0);
+        let in_contact = scene.pads().any(|p| p.force_n > 0.0);
         let contact = in_contact || self.was_in_contact || last;
         let due = |since: f64, period: f64| t - since >= period * (1.0 - 1e-9);
         let keep = contact || due(self.last_kept_s, self.period_s);
@@ -297,50 +311,16 @@ impl Keeper {
     }
 }
 
-/// Deepest a jaw may sink into a clamped string before the contact is meaningless, m (with the
-/// clamp's stiff contact it sinks ≈ 0.1 mm; rapier's default soft contact let it reach the axis).
-const MAX_JAW_SINKING_M: f64 = 5e-3;
-
 /// Total mass × g × twice the reach (arm plus string): the most gravity could release, J.
-fn gravity_span_j(scenario: &Scenario, scene: &Scene) -> Result<f64, SceneError> {
-    let payload_kg: f64 = scenario.payload_masses()?.iter().map(|m| m.mass_kg).sum();
-    let string_m = scenario.pipe_string()?.map_or(0.0, |s| s.length_m);
+fn gravity_span_j(model: &Model, scene: &Scene) -> f64 {
+    let string_m = model.payload.string().map_or(0.0, |s| s.pipe.length_m);
     let arm = &scene.arm.arm;
-    let mass_kg = arm.beam.total_mass_kg + payload_kg;
-    Ok(mass_kg * scenario.spec.physics.gravity_m_s2.abs() * 2.0 * (arm.length_m() + string_m))
-}
-
-/// What makes the scene's state meaningless though the arm's is not: a pad's force not finite or
-/// the pad crushed beyond its thickness, the clamp's jaws sunk into the string, the string out of
-/// the jaws.
-fn scene_fault(scene: &Scene, string_length_m: f64) -> Option<String> {
-    for pad in &scene.pads {
-        if !pad.force_n.is_finite() {
-            return Some(format!("pad {}'s contact force is no longer finite", pad.spec.name));
-        }
-        if pad.compression_m > pad.spec.thickness_m {
-            return Some(format!(
-                "pad {} is compressed {:.1} mm, beyond its {:.1} mm thickness",
-                pad.spec.name,
-                1e3 * pad.compression_m,
-                1e3 * pad.spec.thickness_m
-            ));
-        }
-    }
-    let grip = scene.grip.as_ref()?;
-    if !grip.slip_m.is_finite() {
-        Some("the string's slip is no longer finite".into())
-    } else if grip.jaw_sinking_m > MAX_JAW_SINKING_M {
-        Some(format!("the clamp's jaws sank {:.1} mm into the string", 1e3 * grip.jaw_sinking_m))
-    } else if grip.slip_m.abs() > string_length_m {
-        Some(format!("the string slid {:.3} m in the jaws, out of its {string_length_m:.2} m length", grip.slip_m))
-    } else {
-        None
-    }
+    let mass_kg = arm.beam.total_mass_kg + model.payload.mass_kg();
+    mass_kg * model.physics.gravity_m_s2.abs() * 2.0 * (arm.length_m() + string_m)
 }
 
 /// A step that failed because the state blew up or Newton could not follow it is a divergence.
-fn diverged_step(scenario: &Scenario, scene: &Scene, error: SceneError) -> SceneError {
+fn diverged_step(model: &Model, scene: &Scene, error: SceneError) -> SceneError {
     use crate::integrate::IntegrateError;
     match error {
         SceneError::Arm(ArmError::Integrate(
@@ -350,37 +330,19 @@ fn diverged_step(scenario: &Scenario, scene: &Scene, error: SceneError) -> Scene
                 IntegrateError::NonFinite { t } | IntegrateError::NoConvergence { t, .. } => t,
                 _ => f64::NAN,
             };
-            divergence_error(scenario, scene, Divergence { t_s, what: e.to_string() })
+            divergence_error(model, scene, Divergence { t_s, what: e.to_string() })
         }
         other => other,
     }
 }
 
-fn divergence_error(scenario: &Scenario, scene: &Scene, d: Divergence) -> SceneError {
-    let h = scenario.spec.time.step_s;
-    let advice = if scene.grip.is_some() {
-        format!(
-            "the friction clamp held at every step and model measured (docs/accuracy.md); check its squeeze_n and \
-             friction_coefficient against the string's weight, try step_s = {:.3e} s, or a rigid clamp",
-            0.5 * h
-        )
-    } else if scene.method == crate::scenario::ContactMethod::Rapier {
-        let limit = scenario
-            .spec
-            .dampeners
-            .iter()
-            .filter_map(|p| p.law.explicit_body_limit_s(scenario.spec.contact.pad_mass_kg))
-            .fold(f64::INFINITY, f64::min);
-        format!(
-            "rapier integrates the pad body on its spring-damper explicitly, stable only below {limit:.3e} s: use \
-             step_s <= {:.3e} s, a heavier pad body, or contact.method = \"compliant\"",
-            0.9 * limit
-        )
-    } else {
-        let peak_force_n = scene.pads.iter().map(|p| p.force_n).fold(0.0, f64::max).max(1.0);
+fn divergence_error(model: &Model, scene: &Scene, d: Divergence) -> SceneError {
+    let h = model.time.step_s;
+    let advice = scene.divergence_advice(h).unwrap_or_else(|| {
+        let peak_force_n = scene.pads().map(|p| p.force_n).fold(0.0, f64::max).max(1.0);
         let penalty = scene.penalty_limits_s(peak_force_n).into_iter().flatten().reduce(f64::min);
-        stability_advice(&scenario.spec.integrator, scene.arm.arm.highest_omega_rad_s, h, penalty)
-    };
+        stability_advice(&model.integrator, scene.arm.arm.highest_omega_rad_s, h, penalty)
+    });
     SceneError::Diverged { t_s: d.t_s, what: d.what, advice }
 }
 
@@ -397,18 +359,18 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
         series.modal_dofs = s.q.len();
         series.modal_q.extend_from_slice(s.q.as_slice());
     }
-    if let Some(grip) = &scene.grip {
+    if let Some(grip) = scene.grip() {
         series.string_slip_m.push(grip.slip_m);
         series.jaw_sinking_m.push(grip.jaw_sinking_m);
     }
-    for ((pad, forces), tracker) in scene.pads.iter().zip(&mut series.pad_force_n).zip(trackers) {
+    for ((pad, forces), tracker) in scene.pads().zip(&mut series.pad_force_n).zip(trackers) {
         forces.push(pad.force_n);
         tracker.push(s.t_s, pad.force_n);
     }
 }
 
 fn summarize(
-    scenario: &Scenario,
+    model: &Model,
     scene: &Scene,
     series: &Series,
     trackers: &[ImpactTracker],
@@ -417,11 +379,11 @@ fn summarize(
     wall_time_s: f64,
 ) -> Result<RunSummary, SceneError> {
     let arm = &scene.arm.arm;
-    let g = scenario.spec.physics.gravity_m_s2;
+    let g = model.physics.gravity_m_s2;
     let w_static =
         arm.beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2).map_err(crate::arm::ArmError::from)?;
     let length = arm.length_m();
-    let payload_kg: f64 = scenario.payload_masses()?.iter().map(|m| m.mass_kg).sum();
+    let payload_kg = model.payload.mass_kg();
     let deflection: Vec<(f64, f64)> =
         series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect();
     let max_tip_deflection_m = deflection.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
@@ -431,15 +393,14 @@ fn summarize(
         .enumerate()
         .fold((0, 0.0_f64), |best, (i, t)| if t.abs() > best.1 { (i, t.abs()) } else { best });
     let pairs = scene
-        .pads
-        .iter()
+        .pads()
         .zip(trackers)
         .map(|(pad, tracker)| {
             let impacts = tracker.impacts();
             let peak = impacts.iter().copied().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n));
             let peak_force_n = peak.map_or(0.0, |p| p.peak_force_n);
             PairSummary {
-                pair: format!("arm–{}", pad.spec.name),
+                pair: format!("arm–{}", pad.dampener.name),
                 peak_force_n,
                 peak_time_s: peak.map_or(f64::NAN, |p| p.peak_time_s),
                 peak_force_per_payload_weight: if payload_kg > 0.0 {
@@ -455,30 +416,30 @@ fn summarize(
         .collect();
     let w_over_l = w_static / length;
     Ok(RunSummary {
-        scenario: scenario.spec.name.clone(),
-        robot: scenario.robot.name.clone(),
+        scenario: model.name.clone(),
+        robot: model.robot.name.clone(),
         payload_kg,
         model: fidelity.to_string(),
         model_reason: String::new(),
-        integrator: format!("{:?}", scenario.spec.integrator),
-        contact_method: format!("{:?}", scenario.spec.contact.method).to_lowercase(),
-        step_s: scenario.spec.time.step_s,
-        free_step_s: scenario.spec.time.free_step_s.unwrap_or(scenario.spec.time.step_s),
+        integrator: format!("{:?}", model.integrator),
+        contact_method: model.contact.method.name().into(),
+        step_s: model.time.step_s,
+        free_step_s: model.time.free_step_s.unwrap_or(model.time.step_s),
         steps,
         simulated_s: series.t_s.last().copied().unwrap_or(0.0),
         wall_time_s,
         static_w_over_l: w_over_l,
         stiffness_class: StiffnessClass::of_ratio(w_over_l).describe().to_string(),
-        motion_advice: crate::select::motion_advice(scenario, StiffnessClass::of_ratio(w_over_l)),
+        motion_advice: crate::select::motion_advice(model, StiffnessClass::of_ratio(w_over_l)),
         max_tip_deflection_m,
         max_w_over_l: max_tip_deflection_m / length,
         peak_drive_torque_n_m: peak_torque,
         peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
-        residual: residual(&deflection, scenario.drive_end_s()),
+        residual: residual(&deflection, model.drive_end_s()),
         pairs,
-        highest_omega_dt: arm.highest_omega_rad_s * scenario.spec.time.step_s,
-        stability_limit_omega_dt: scenario.spec.integrator.stability_limit_omega_dt(),
-        string_slip: scene.grip.as_ref().map(|g| SlipSummary {
+        highest_omega_dt: arm.highest_omega_rad_s * model.time.step_s,
+        stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),
+        string_slip: scene.grip().map(|g| SlipSummary {
             squeeze_n: g.squeeze_n,
             max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),
             final_slip_m: series.string_slip_m.last().copied().unwrap_or(0.0),

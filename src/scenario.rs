@@ -11,11 +11,15 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
-use crate::beam::{BeamModel, BeamSpec, ConcentratedMass};
+use crate::arm::Fidelity;
+use crate::beam::{BeamModel, ConcentratedMass};
 use crate::contact::ForceLaw;
 use crate::drive::{DriveError, MotionProfile, SCurveLimit, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
+use crate::model::{
+    Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, HeldString, Model, Payload,
+    PhysicsOptions, TimeOptions,
+};
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
@@ -64,18 +68,18 @@ pub struct ScenarioSpec {
     pub dampeners: Vec<DampenerSpec>,
     /// How contact forces are computed.
     #[serde(default)]
-    pub contact: ContactSpec,
+    pub contact: ContactOptions,
     /// Model fidelity (default `auto`: the cheapest the scene needs, [`crate::select`]).
     #[serde(default)]
     pub model: ModelSpec,
     /// Physical options (stiffening, gravity).
     #[serde(default)]
-    pub physics: PhysicsSpec,
+    pub physics: PhysicsOptions,
     /// Time integrator (default generalized-α, ρ∞ = 0.8).
     #[serde(default)]
     pub integrator: IntegratorKind,
     /// Time step and span.
-    pub time: TimeSpec,
+    pub time: TimeOptions,
 }
 
 /// The model a scenario asks for.
@@ -129,58 +133,10 @@ fn default_friction() -> f64 {
     0.3
 }
 
-/// How the gripper holds a string.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Clamp {
-    /// Welded to the gripper: string and jaws are lumped into the arm's masses, their shapes
-    /// follow the gripper.
-    #[default]
-    Rigid,
-    /// Held by friction: the jaws close on force-limited prismatic motors and squeeze a dynamic
-    /// string in rapier; it slips when its load exceeds μ times the squeeze of both jaws.
-    Friction,
-}
-
-/// A friction clamp's parameters, resolved.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FrictionClamp {
-    /// Coulomb coefficient.
-    pub friction_coefficient: f64,
-    /// Squeeze per jaw, N (`None`: the jaw joint's effort).
-    pub squeeze_n: Option<f64>,
-}
-
 /// The seed's lab mass blocks, kg.
 pub const LAB_BLOCKS_KG: [f64; 3] = [0.100, 0.206, 0.412];
 
-/// Physical options of the arm model that belong to the scene, not the robot.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct PhysicsSpec {
-    /// Geometric stiffening from centrifugal and gravity axial load (default on).
-    pub geometric_stiffening: bool,
-    /// Gravity, m/s².
-    pub gravity_m_s2: f64,
-}
-
-impl Default for PhysicsSpec {
-    fn default() -> Self {
-        PhysicsSpec { geometric_stiffening: true, gravity_m_s2: STANDARD_GRAVITY_M_S2 }
-    }
-}
-
-/// Which arm face touches a pad, named as seen with the arm horizontal.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Face {
-    /// The +y face: the side the arm moves toward as the lift angle grows.
-    Upper,
-    /// The −y face.
-    Lower,
-}
-
-/// A rubber pad placed against the arm at a stop.
+/// A rubber pad as a scenario states it (angles in degrees).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DampenerSpec {
@@ -202,40 +158,6 @@ pub struct DampenerSpec {
     pub width_m: f64,
     /// Force law of the rubber.
     pub law: ForceLaw,
-}
-
-/// Contact response.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSpec {
-    /// `compliant` (the pad's force law, implicit in the arm step) or `rapier`.
-    #[serde(default)]
-    pub method: ContactMethod,
-    /// Mass of the pad body for the `rapier` method, kg.
-    #[serde(default = "default_pad_mass")]
-    pub pad_mass_kg: f64,
-}
-
-fn default_pad_mass() -> f64 {
-    1.0
-}
-
-impl Default for ContactSpec {
-    fn default() -> Self {
-        ContactSpec { method: ContactMethod::default(), pad_mass_kg: default_pad_mass() }
-    }
-}
-
-/// How contact forces are computed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum ContactMethod {
-    /// The pad's force law, evaluated inside the implicit arm step from rapier's contact geometry.
-    #[default]
-    Compliant,
-    /// rapier's constraint solver against a pad body on a linear spring joint; the contact
-    /// impulse / dt is fed back to the arm.
-    Rapier,
 }
 
 /// Hub motion profiles; angles in degrees.
@@ -261,47 +183,19 @@ pub enum DriveSpec {
     Hold { angle_deg: f64 },
 }
 
-/// Local error per controlled step allowed by default, m of tip displacement (docs/performance.md:
-/// chosen from measured errors against the converged reference).
-pub const DEFAULT_TOLERANCE_M: f64 = 1e-6;
-
-/// Time step and span.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TimeSpec {
-    /// Step around contact (and everywhere without `free_step_s`), s.
-    pub step_s: f64,
-    /// Longest step while no pad is within reach of the arm, s (default: `step_s`, fixed steps).
-    /// In free motion the step is then controlled by the implicit integrator's local error
-    /// estimate (between `step_s` and this); the scene predicts the approach from each pad's
-    /// clearance and the arm's speed and falls back to `step_s` before a contact can begin.
-    /// `compliant` contact with a rigid clamp and an implicit integrator only (the `rapier` pad
-    /// body and the friction clamp keep `step_s`; the explicit methods estimate no error).
-    #[serde(default)]
-    pub free_step_s: Option<f64>,
-    /// Local error allowed per controlled step, as displacement of the arm's tip, m (default
-    /// [`DEFAULT_TOLERANCE_M`]; used with `free_step_s`).
-    #[serde(default)]
-    pub tolerance_m: Option<f64>,
-    /// Time simulated after the drive ends, s.
-    pub settle_s: f64,
-}
-
-/// A checked scenario with its robot loaded.
+/// A scenario file, checked and resolved: what it says, and the model of the machine and scene.
 #[derive(Debug, Clone)]
 pub struct Scenario {
     /// The file it came from.
     pub path: PathBuf,
     /// What the file says.
     pub spec: ScenarioSpec,
-    /// The robot it names.
-    pub robot: Robot,
-    /// The hub motion, rad.
-    pub motion: MotionProfile,
+    /// The machine and scene it describes, resolved.
+    pub model: Model,
 }
 
 impl Scenario {
-    /// Reads and checks a scenario file and the robot it names.
+    /// Reads, checks and resolves a scenario file and the robot it names.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
         let spec: ScenarioSpec =
@@ -309,7 +203,7 @@ impl Scenario {
         Self::from_spec(path, spec)
     }
 
-    /// Checks a spec as if read from `path` (robot paths resolve against its folder).
+    /// Checks and resolves a spec as if read from `path` (robot paths resolve against its folder).
     pub fn from_spec(path: &Path, spec: ScenarioSpec) -> Result<Self, ScenarioError> {
         let robot = Self::load_robot(path, &spec)?;
         Self::from_spec_and_robot(path, spec, robot)
@@ -325,25 +219,52 @@ impl Scenario {
         load_robot(&Self::robot_path(path, spec)).map_err(|source| ScenarioError::Robot { path: path.into(), source })
     }
 
-    /// Checks a spec as if read from `path`, with its robot already read by
+    /// Checks and resolves a spec as if read from `path`, with its robot already read by
     /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
     pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
+        let check = Check { path };
         let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
-        let scenario = Scenario { path: path.into(), spec, robot, motion };
-        scenario.validate()?;
-        Ok(scenario)
+        let payload = check.payload(&spec.payload, &robot)?;
+        let dampeners: Result<Vec<_>, _> = spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
+        let model = Model {
+            name: spec.name.clone(),
+            robot,
+            payload,
+            drive: Drive { motion },
+            dampeners: dampeners?,
+            contact: spec.contact,
+            fidelity: match spec.model {
+                ModelSpec::Auto => None,
+                ModelSpec::Rigid => Some(Fidelity::Rigid),
+                ModelSpec::Modal { modes } => Some(Fidelity::Modal { modes }),
+                ModelSpec::Fe => Some(Fidelity::Fe),
+            },
+            physics: spec.physics,
+            integrator: spec.integrator,
+            time: spec.time,
+        };
+        check.model(&model)?;
+        Ok(Scenario { path: path.into(), spec, model })
     }
+}
 
+/// The checks of one scenario file: each error names the file, the key and what is allowed.
+struct Check<'a> {
+    path: &'a Path,
+}
+
+impl Check<'_> {
     fn invalid(&self, key: &str, message: impl Into<String>) -> ScenarioError {
-        ScenarioError::Invalid { path: self.path.clone(), key: key.into(), message: message.into() }
+        ScenarioError::Invalid { path: self.path.into(), key: key.into(), message: message.into() }
     }
 
-    /// Checks the ranges serde cannot, building each part once.
-    fn validate(&self) -> Result<(), ScenarioError> {
-        let spec = &self.spec;
-        let beam =
-            self.beam_spec().and_then(|b| BeamModel::new(b).map_err(|e| self.invalid("payload", e.to_string())))?;
-        if let ModelSpec::Modal { modes } = spec.model
+    /// The ranges serde cannot check, on the resolved model.
+    fn model(&self, model: &Model) -> Result<(), ScenarioError> {
+        let beam = model
+            .beam_spec()
+            .and_then(BeamModel::new)
+            .map_err(|e| self.invalid("payload", e.to_string()))?;
+        if let Some(Fidelity::Modal { modes }) = model.fidelity
             && !(1..=beam.dofs()).contains(&modes)
         {
             return Err(self.invalid(
@@ -351,9 +272,24 @@ impl Scenario {
                 format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.dofs()),
             ));
         }
-        self.check_drive_limits()?;
-        spec.integrator.build().map_err(|e| self.invalid("integrator", e.to_string()))?;
-        let t = spec.time;
+        self.drive_limits(model)?;
+        model.integrator.build().map_err(|e| self.invalid("integrator", e.to_string()))?;
+        self.time(model)?;
+        let g = model.physics.gravity_m_s2;
+        if !(g.is_finite() && (0.0..=100.0).contains(&g)) {
+            return Err(self.invalid("physics.gravity_m_s2", format!("{g} is outside 0 ..= 100")));
+        }
+        if !(model.contact.pad_mass_kg.is_finite() && model.contact.pad_mass_kg > 0.0) {
+            return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", model.contact.pad_mass_kg)));
+        }
+        if let Some(held) = model.payload.string() {
+            self.clamp(held, &model.robot)?;
+        }
+        Ok(())
+    }
+
+    fn time(&self, model: &Model) -> Result<(), ScenarioError> {
+        let t = model.time;
         if !(t.step_s.is_finite() && t.step_s > 0.0 && t.step_s <= 0.1) {
             return Err(self.invalid("time.step_s", format!("{} is outside 0 < step_s <= 0.1", t.step_s)));
         }
@@ -373,32 +309,58 @@ impl Scenario {
                 return Err(self.invalid("time.tolerance_m", "controls free_step_s: set free_step_s (> step_s) too"));
             }
         }
-        if t.free_step_s.is_some() && spec.integrator.stability_limit_omega_dt().is_some() {
+        if t.free_step_s.is_some() && model.integrator.stability_limit_omega_dt().is_some() {
             return Err(self.invalid(
                 "time.free_step_s",
                 format!(
                     "needs an implicit integrator (generalized-alpha, hht, newmark with 2 beta >= gamma); {} estimates \
                      no local error",
-                    spec.integrator.name()
+                    model.integrator.name()
                 ),
             ));
         }
         if !(t.settle_s.is_finite() && (0.0..=3600.0).contains(&t.settle_s)) {
             return Err(self.invalid("time.settle_s", format!("{} is outside 0 <= settle_s <= 3600", t.settle_s)));
         }
-        let g = spec.physics.gravity_m_s2;
-        if !(g.is_finite() && (0.0..=100.0).contains(&g)) {
-            return Err(self.invalid("physics.gravity_m_s2", format!("{g} is outside 0 ..= 100")));
-        }
-        if !(spec.contact.pad_mass_kg.is_finite() && spec.contact.pad_mass_kg > 0.0) {
-            return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", spec.contact.pad_mass_kg)));
-        }
-        self.check_clamp()?;
-        spec.dampeners.iter().enumerate().try_for_each(|(i, d)| self.check_dampener(i, d))
+        Ok(())
     }
 
-    fn check_clamp(&self) -> Result<(), ScenarioError> {
-        let Some(clamp) = self.friction_clamp() else { return Ok(()) };
+    fn payload(&self, spec: &PayloadSpec, robot: &Robot) -> Result<Payload, ScenarioError> {
+        Ok(match spec {
+            PayloadSpec::None => Payload::None,
+            PayloadSpec::String { string, at, clamp, friction_coefficient, squeeze_n } => {
+                let pipe = PipeString::from_spec(string)
+                    .map_err(|source| ScenarioError::Robot { path: self.path.into(), source })?;
+                let body = robot.body(at).ok_or_else(|| {
+                    let names: Vec<_> = robot.carried.iter().map(|b| b.name.as_str()).collect();
+                    self.invalid("payload.at", format!("`{at}` is not a link on the arm: allowed {}", names.join(", ")))
+                })?;
+                Payload::String(HeldString {
+                    pipe,
+                    body: at.clone(),
+                    station_m: body.station_m,
+                    clamp: *clamp,
+                    friction: FrictionClamp { friction_coefficient: *friction_coefficient, squeeze_n: *squeeze_n },
+                })
+            }
+            PayloadSpec::Block { block } => {
+                let mass_kg = *LAB_BLOCKS_KG
+                    .get((*block as usize).wrapping_sub(1))
+                    .ok_or_else(|| self.invalid("payload.block", format!("{block}: allowed 1, 2, 3")))?;
+                // A cube of steel: side from its mass, inertia m a²/6.
+                let side = (mass_kg / 7850.0).cbrt();
+                Payload::Lumped(ConcentratedMass {
+                    name: format!("block {block}"),
+                    position_m: robot.arm.length_m(),
+                    mass_kg,
+                    rotary_inertia_kg_m2: mass_kg * side * side / 6.0,
+                })
+            }
+        })
+    }
+
+    fn clamp(&self, held: &HeldString, robot: &Robot) -> Result<(), ScenarioError> {
+        let Some(clamp) = held.friction_clamp() else { return Ok(()) };
         let mu = clamp.friction_coefficient;
         if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
             return Err(self.invalid("payload.friction_coefficient", format!("{mu} is outside 0 < μ <= 2")));
@@ -408,22 +370,23 @@ impl Scenario {
         {
             return Err(self.invalid("payload.squeeze_n", format!("{n} is outside > 0 N")));
         }
-        let jaws = self.robot.carried.iter().filter(|b| b.mount.is_prismatic()).count();
+        let jaws = robot.carried.iter().filter(|b| b.mount.is_prismatic()).count();
         if jaws != 2 {
             return Err(self.invalid(
                 "payload.clamp",
-                format!(
-                    "a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}",
-                    self.robot.name
-                ),
+                format!("a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}", robot.name),
             ));
+        }
+        if robot.body(&held.body).is_some_and(|b| b.shapes.is_empty()) {
+            return Err(self.invalid("payload.at", format!("`{}` has no collision shape to carry the jaws", held.body)));
         }
         Ok(())
     }
 
-    fn check_drive_limits(&self) -> Result<(), ScenarioError> {
-        let (lo, hi) = self.robot.lift.limits_rad;
-        for (key, angle) in [("drive.start_deg", self.motion.start_rad()), ("drive.end_deg", self.motion.end_rad())] {
+    fn drive_limits(&self, model: &Model) -> Result<(), ScenarioError> {
+        let (lo, hi) = model.robot.lift.limits_rad;
+        let motion = &model.drive.motion;
+        for (key, angle) in [("drive.start_deg", motion.start_rad()), ("drive.end_deg", motion.end_rad())] {
             if !(lo - 1e-9..=hi + 1e-9).contains(&angle) {
                 let allowed = format!(
                     "{:.3} is outside the lift joint's limits {:.3} ..= {:.3} deg",
@@ -437,9 +400,15 @@ impl Scenario {
         Ok(())
     }
 
-    fn check_dampener(&self, i: usize, d: &DampenerSpec) -> Result<(), ScenarioError> {
+    fn dampener(
+        &self,
+        i: usize,
+        d: &DampenerSpec,
+        robot: &Robot,
+        spec: &ScenarioSpec,
+    ) -> Result<Dampener, ScenarioError> {
         let key = |k: &str| format!("dampeners[{i}].{k}");
-        let length = self.robot.arm.length_m();
+        let length = robot.arm.length_m();
         if !(d.station_m.is_finite() && (0.0..=length).contains(&d.station_m)) {
             return Err(
                 self.invalid(&key("station_m"), format!("{} is outside 0 ..= {length} (the arm length)", d.station_m))
@@ -458,128 +427,22 @@ impl Scenario {
         }
         d.law.validate().map_err(|(name, v, allowed)| {
             self.invalid(&key(&format!("law.{name}")), format!("{v} is outside {allowed}"))
-        })
-    }
-
-    /// The payload as concentrated masses on the arm.
-    pub fn payload_masses(&self) -> Result<Vec<ConcentratedMass>, ScenarioError> {
-        Ok(match &self.spec.payload {
-            PayloadSpec::None => Vec::new(),
-            PayloadSpec::String { at, .. } => {
-                let s = self.pipe_string()?.expect("a string payload");
-                let body = self.robot.body(at).ok_or_else(|| {
-                    let names: Vec<_> = self.robot.carried.iter().map(|b| b.name.as_str()).collect();
-                    self.invalid("payload.at", format!("`{at}` is not a link on the arm: allowed {}", names.join(", ")))
-                })?;
-                vec![ConcentratedMass {
-                    name: format!("string {}", s.pipe.size),
-                    position_m: body.station_m,
-                    mass_kg: s.mass_kg(),
-                    rotary_inertia_kg_m2: s.transverse_inertia_kg_m2(),
-                }]
-            }
-            PayloadSpec::Block { block } => {
-                let mass_kg = *LAB_BLOCKS_KG
-                    .get((*block as usize).wrapping_sub(1))
-                    .ok_or_else(|| self.invalid("payload.block", format!("{block}: allowed 1, 2, 3")))?;
-                // A cube of steel: side from its mass, inertia m a²/6.
-                let side = (mass_kg / 7850.0).cbrt();
-                vec![ConcentratedMass {
-                    name: format!("block {block}"),
-                    position_m: self.robot.arm.length_m(),
-                    mass_kg,
-                    rotary_inertia_kg_m2: mass_kg * side * side / 6.0,
-                }]
-            }
-        })
-    }
-
-    /// The friction clamp, if the payload is a string held by one.
-    pub fn friction_clamp(&self) -> Option<FrictionClamp> {
-        match &self.spec.payload {
-            PayloadSpec::String { clamp: Clamp::Friction, friction_coefficient, squeeze_n, .. } => {
-                Some(FrictionClamp { friction_coefficient: *friction_coefficient, squeeze_n: *squeeze_n })
-            }
-            _ => None,
-        }
-    }
-
-    /// The clamped pipe string, if the payload is one.
-    pub fn pipe_string(&self) -> Result<Option<PipeString>, ScenarioError> {
-        match &self.spec.payload {
-            PayloadSpec::String { string, .. } => PipeString::from_spec(string)
-                .map(Some)
-                .map_err(|source| ScenarioError::Robot { path: self.path.clone(), source }),
-            _ => Ok(None),
-        }
-    }
-
-    /// The beam description: robot plus payload.
-    pub fn beam_spec(&self) -> Result<BeamSpec, ScenarioError> {
-        let payload = self.payload_masses()?;
-        self.robot.beam_spec(&payload).map_err(|e| self.invalid("payload", e.to_string()))
-    }
-
-    /// Arm options: the robot's damping and hub, the scene's physics.
-    pub fn arm_options(&self) -> ArmOptions {
-        ArmOptions {
-            damping_ratios: self.robot.arm.damping_ratios.clone(),
-            geometric_stiffening: self.spec.physics.geometric_stiffening,
-            gravity_m_s2: self.spec.physics.gravity_m_s2,
-            hub_inertia_kg_m2: self.robot.arm.hub_inertia_kg_m2,
-        }
-    }
-
-    /// The arm model at `fidelity`.
-    pub fn arm_model(&self, fidelity: Fidelity) -> Result<ArmModel, ArmError> {
-        let spec = self.beam_spec().map_err(|e| ArmError::InvalidParameter {
-            name: "payload".into(),
-            value: f64::NAN,
-            allowed: e.to_string(),
         })?;
-        ArmModel::new(BeamModel::new(spec)?, fidelity, self.arm_options())
-    }
-
-    /// The fidelity to run at: the scenario's, or the one `auto` chooses, with the reason.
-    pub fn fidelity(&self) -> Result<crate::select::Choice, ScenarioError> {
-        self.fidelity_by(|| crate::select::choose(self))
-    }
-
-    /// [`Self::fidelity`] with the scenario's beam and clamped modes already built.
-    pub fn fidelity_for(
-        &self,
-        beam: &BeamModel,
-        modes: &crate::beam::ModalBasis,
-    ) -> Result<crate::select::Choice, ScenarioError> {
-        self.fidelity_by(|| crate::select::choose_for(self, beam, modes))
-    }
-
-    fn fidelity_by(
-        &self,
-        auto: impl FnOnce() -> Result<crate::select::Choice, crate::beam::BeamError>,
-    ) -> Result<crate::select::Choice, ScenarioError> {
-        let fixed = |fidelity| Ok(crate::select::Choice { fidelity, reason: "set in the scenario".into() });
-        match self.spec.model {
-            ModelSpec::Auto => auto().map_err(|e| self.invalid("model", e.to_string())),
-            ModelSpec::Rigid => fixed(Fidelity::Rigid),
-            ModelSpec::Modal { modes } => fixed(Fidelity::Modal { modes }),
-            ModelSpec::Fe => fixed(Fidelity::Fe),
+        let dampener = Dampener {
+            name: d.name.clone(),
+            angle_rad: d.angle_deg.to_radians(),
+            station_m: d.station_m,
+            face: d.face,
+            gap_m: d.gap_m,
+            thickness_m: d.thickness_m,
+            length_m: d.length_m,
+            width_m: d.width_m,
+            law: d.law,
+        };
+        if spec.contact.method == ContactMethod::Rapier {
+            crate::scene::rapier_pad_spring(&dampener).map_err(|(k, message)| self.invalid(&key(k), message))?;
         }
-    }
-
-    /// The hub drive.
-    pub fn hub_drive(&self) -> HubDrive {
-        HubDrive::Prescribed(self.motion.clone())
-    }
-
-    /// Time the drive ends, s.
-    pub fn drive_end_s(&self) -> f64 {
-        self.motion.duration_s()
-    }
-
-    /// Total simulated time: drive plus settling, s.
-    pub fn duration_s(&self) -> f64 {
-        self.drive_end_s() + self.spec.time.settle_s
+        Ok(dampener)
     }
 }
 

@@ -59,7 +59,7 @@ pub fn run_family(files: &[PathBuf], capture_frames: bool) -> Result<Vec<Variant
         .map(|path| {
             let scenario = Scenario::load(path)?;
             let options = RunOptions { capture_frames, ..RunOptions::default() };
-            let (summary, series) = run_with(&scenario, &options)?;
+            let (summary, series) = run_with(&scenario.model, &options)?;
             let name = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
             Ok(Variant { name, scenario, summary, series })
         })

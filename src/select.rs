@@ -22,7 +22,7 @@ use serde::Serialize;
 use crate::analysis::StiffnessClass;
 use crate::arm::Fidelity;
 use crate::beam::{BeamError, BeamModel, ModalBasis};
-use crate::scenario::{DriveSpec, Scenario};
+use crate::model::{Dampener, Model};
 
 /// The fidelity chosen and why.
 #[derive(Debug, Clone, PartialEq)]
@@ -33,27 +33,39 @@ pub struct Choice {
     pub reason: String,
 }
 
-/// Picks the cheapest fidelity the scenario needs.
-pub fn choose(scenario: &Scenario) -> Result<Choice, BeamError> {
-    let beam =
-        BeamModel::new(scenario.beam_spec().map_err(|e| BeamError::invalid("payload", f64::NAN, e.to_string()))?)?;
-    let modes = beam.modes()?;
-    choose_for(scenario, &beam, &modes)
+/// The fidelity to run a model at: its own, or the one `auto` chooses, with the reason.
+pub fn fidelity(model: &Model) -> Result<Choice, BeamError> {
+    match model.fidelity {
+        Some(fidelity) => Ok(Choice { fidelity, reason: "set in the scenario".into() }),
+        None => {
+            let beam = BeamModel::new(model.beam_spec()?)?;
+            let modes = beam.modes()?;
+            choose(model, &beam, &modes)
+        }
+    }
 }
 
-/// [`choose`] for the scenario's beam and its clamped modes, already built (a run builds them
-/// once for the choice and the model).
-pub fn choose_for(scenario: &Scenario, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
-    let g = scenario.spec.physics.gravity_m_s2;
+/// [`fidelity`] with the model's beam and its clamped modes already built (a run builds them
+/// once for the choice and the arm).
+pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
+    match model.fidelity {
+        Some(fidelity) => Ok(Choice { fidelity, reason: "set in the scenario".into() }),
+        None => choose(model, beam, modes),
+    }
+}
+
+/// Picks the cheapest fidelity the model needs, given its beam and clamped modes.
+pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
+    let g = model.physics.gravity_m_s2;
     let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
     let frequencies = modes.frequencies_hz();
     let below = |f_max: f64| frequencies.iter().take_while(|f| **f <= f_max).filter(|f| **f > 0.0).count();
     let mut reasons = Vec::new();
     let mut n = 0;
-    for pad in &scenario.spec.dampeners {
+    for pad in &model.dampeners {
         let station_shape = beam.point_rows(pad.station_m)[1].dot(&modes.shapes.column(0));
         let m_eff = 1.0 / station_shape.powi(2).max(1e-30);
-        let (resting, stiffness) = pad_kind(scenario, beam, pad)?;
+        let (resting, stiffness) = pad_kind(model, beam, pad)?;
         if resting {
             reasons.push(format!("{} supports the arm under its weight (quasi-static)", pad.name));
             continue;
@@ -68,14 +80,15 @@ pub fn choose_for(scenario: &Scenario, beam: &BeamModel, modes: &ModalBasis) -> 
         ));
         n = n.max(k);
     }
-    let jerk_limited = matches!(scenario.spec.drive, DriveSpec::SCurve { .. } | DriveSpec::Hold { .. });
-    if let DriveSpec::SCurve { .. } = scenario.spec.drive {
-        let t_j = scenario.motion.peak_accel_rad_s2() / scenario.motion.peak_jerk_rad_s3();
+    let motion = &model.drive.motion;
+    let jerk_limited = matches!(motion.name(), "s-curve" | "hold");
+    if motion.name() == "s-curve" {
+        let t_j = motion.peak_accel_rad_s2() / motion.peak_jerk_rad_s3();
         let k = below(1.0 / t_j);
         reasons.push(format!("the S-curve's jerk time {t_j:.2} s excites up to {:.2} Hz: {k} mode(s)", 1.0 / t_j));
         n = n.max(k);
     }
-    let fidelity = if n == 0 && class == StiffnessClass::Rigid && scenario.spec.dampeners.is_empty() && jerk_limited {
+    let fidelity = if n == 0 && class == StiffnessClass::Rigid && model.dampeners.is_empty() && jerk_limited {
         reasons.push("the arm is in the seed's rigid class".into());
         Fidelity::Rigid
     } else {
@@ -90,20 +103,13 @@ pub fn choose_for(scenario: &Scenario, beam: &BeamModel, modes: &ModalBasis) -> 
 /// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes
 /// the gap), and the pad's stiffness for an impact estimate, N/m (a nonlinear law's secant at
 /// 1 mm).
-fn pad_kind(
-    scenario: &Scenario,
-    beam: &BeamModel,
-    pad: &crate::scenario::DampenerSpec,
-) -> Result<(bool, f64), BeamError> {
-    let theta = pad.angle_deg.to_radians();
-    let g = scenario.spec.physics.gravity_m_s2;
+fn pad_kind(model: &Model, beam: &BeamModel, pad: &Dampener) -> Result<(bool, f64), BeamError> {
+    let theta = pad.angle_rad;
+    let g = model.physics.gravity_m_s2;
     let load = -g * (theta.sin() * &beam.axial_mass + theta.cos() * &beam.transverse_mass);
     let d = beam.static_displacement(&load)?;
     let v = beam.point_rows(pad.station_m)[1].dot(&d);
-    let toward = match pad.face {
-        crate::scenario::Face::Upper => v,
-        crate::scenario::Face::Lower => -v,
-    };
+    let toward = pad.face.sign() * v;
     Ok((toward > pad.gap_m, pad.law.force_n(1e-3, 0.0, 1.0) / 1e-3))
 }
 
@@ -120,10 +126,11 @@ pub struct MotionAdvice {
     pub within: bool,
 }
 
-/// The seed's recommended acceleration limits (§4) for `class`, against the scenario's drive.
-pub fn motion_advice(scenario: &Scenario, class: StiffnessClass) -> MotionAdvice {
-    let s_curve = matches!(scenario.spec.drive, DriveSpec::SCurve { .. });
-    let peak = scenario.motion.peak_accel_rad_s2().to_degrees();
+/// The seed's recommended acceleration limits (§4) for `class`, against the model's drive.
+pub fn motion_advice(model: &Model, class: StiffnessClass) -> MotionAdvice {
+    let motion = &model.drive.motion;
+    let s_curve = motion.name() == "s-curve";
+    let peak = motion.peak_accel_rad_s2().to_degrees();
     let (advice, limit, profile_ok) = match class {
         StiffnessClass::Rigid => ("trapezoidal drive, acceleration at start and stop ≤ 7–8 °/s²", 7.0, true),
         StiffnessClass::RigidFlexible if s_curve => ("trapezoidal ≤ 5 °/s², or S-curve ≤ about 9 °/s²", 9.0, true),
@@ -131,7 +138,7 @@ pub fn motion_advice(scenario: &Scenario, class: StiffnessClass) -> MotionAdvice
         StiffnessClass::Flexible => ("S-curve, acceleration ≤ 7–8 °/s²", 7.0, s_curve),
         StiffnessClass::BeyondYield => ("beyond the seed's bands: stiffen the arm", 0.0, false),
     };
-    let uniform = matches!(scenario.spec.drive, DriveSpec::Uniform { .. });
+    let uniform = motion.name() == "uniform";
     MotionAdvice {
         advice: advice.into(),
         peak_accel_deg_s2: peak,

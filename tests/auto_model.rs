@@ -25,17 +25,17 @@ fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
 #[test]
 fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
     for path in shipped() {
-        let mut s = Scenario::load(&path).unwrap();
+        let mut s = Scenario::load(&path).unwrap().model;
         // The models are compared under one unconditionally stable integrator: the FE arm's
         // highest mode is far beyond an explicit method's limit at the scene's step (the default
         // scene's RK4 is chosen for its three modes).
-        if s.spec.integrator.stability_limit_omega_dt().is_some() {
-            s.spec.integrator = pipearm::integrate::IntegratorKind::default();
+        if s.integrator.stability_limit_omega_dt().is_some() {
+            s.integrator = pipearm::integrate::IntegratorKind::default();
         }
-        let chosen = s.fidelity().unwrap().fidelity;
+        let chosen = pipearm::select::fidelity(&s).unwrap().fidelity;
         let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
         let (auto, _) = run(&s, Some(chosen)).unwrap();
-        let name = &s.spec.name;
+        let name = &s.name;
         println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));
         assert!(off(&auto, &fe) <= 0.02, "{name}: {chosen} is {} from fe", off(&auto, &fe));
         let cheaper: Vec<Fidelity> = match chosen {
@@ -63,18 +63,19 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
 #[test]
 fn motion_advice_flags_drives_beyond_the_seed_limits() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
-    let mut s = Scenario::load(&path).unwrap();
+    let mut s = Scenario::load(&path).unwrap().model;
     let (within, _) = run(&s, None).unwrap();
     assert!(within.motion_advice.within, "{:?}", within.motion_advice);
     // 0 → 90° in 5 s with a 20 % ramp: 22.5 °/s², beyond the seed's 5 °/s² for this class.
-    s.spec.drive = DriveSpec::Trapezoidal {
+    s.drive.motion = DriveSpec::Trapezoidal {
         start_deg: 0.0,
         end_deg: 90.0,
         duration_s: 5.0,
         accel_deg_s2: None,
         ramp_fraction: Some(0.2),
-    };
-    s.motion = s.spec.drive.motion().unwrap();
+    }
+    .motion()
+    .unwrap();
     let (fast, _) = run(&s, None).unwrap();
     assert!(
         !fast.motion_advice.within && (fast.motion_advice.peak_accel_deg_s2 - 22.5).abs() < 1e-9,

@@ -9,9 +9,10 @@ use common::rel;
 use pipearm::bench::stability::Limit;
 use pipearm::bench::{BenchOptions, Outcome, bench, points_csv, report_markdown};
 use pipearm::integrate::IntegratorKind;
+use pipearm::model::Model;
 use pipearm::scenario::{DriveSpec, Scenario};
 
-fn short_lab() -> Scenario {
+fn short_lab() -> Model {
     let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/lab.toml")).unwrap();
     s.spec.drive = DriveSpec::Trapezoidal {
         start_deg: 0.0,
@@ -21,7 +22,7 @@ fn short_lab() -> Scenario {
         ramp_fraction: Some(0.2),
     };
     s.spec.time.settle_s = 0.5;
-    Scenario::from_spec(&s.path, s.spec).unwrap()
+    Scenario::from_spec(&s.path, s.spec).unwrap().model
 }
 
 #[test]
@@ -43,7 +44,7 @@ fn a_quick_bench_of_the_lab_scene_agrees_with_its_reference_and_the_theory() {
                 assert!(!explicit_euler, "explicit Euler must diverge: {}", p.variant.label());
                 // Every flexible model resolves the tip history to a few per cent of its peak.
                 if p.variant.fidelity != pipearm::arm::Fidelity::Rigid
-                    && p.variant.contact != pipearm::scenario::ContactMethod::Rapier
+                    && p.variant.contact != pipearm::model::ContactMethod::Rapier
                 {
                     assert!(m.tip_rms_error < 0.05, "{}: {}", p.variant.label(), m.tip_rms_error);
                 }

@@ -13,19 +13,20 @@ use pipearm::bench::stability::{FLOOR_OMEGA_DT, Limit, arm_is_stable, arm_limit,
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
 use pipearm::run::run;
-use pipearm::scenario::{Clamp, PayloadSpec, Scenario};
+use pipearm::model::{Clamp, ContactMethod, Model};
+use pipearm::scenario::{DriveSpec, Scenario};
 use pipearm::scene::SceneError;
 
-fn scenario(name: &str) -> Scenario {
-    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap()
+fn scenario(name: &str) -> Model {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap().model
 }
 
 /// A shipped scenario under generalized-α, whatever its own integrator: the cases that vary the
 /// step or the model far from the scene's own (an 8 ms step, the FE arm) need a method stable at
 /// any step.
-fn implicit(name: &str) -> Scenario {
+fn implicit(name: &str) -> Model {
     let mut s = scenario(name);
-    s.spec.integrator = IntegratorKind::default();
+    s.integrator = IntegratorKind::default();
     s
 }
 
@@ -63,12 +64,12 @@ fn symplectic_euler_and_rk4_fail_on_the_arm_past_their_limits_on_its_highest_mod
 #[test]
 fn a_coarse_step_misses_the_peak_under_the_stiffest_dampener() {
     let mut s = implicit("default");
-    s.spec.time.settle_s = 1.0;
+    s.time.settle_s = 1.0;
     // Ten times the shipped pad: impacts of about 10 ms.
-    s.spec.dampeners[0].law = ForceLaw::HuntCrossley { stiffness: 7.5e7, exponent: 1.0, restitution: 0.6 };
+    s.dampeners[0].law = ForceLaw::HuntCrossley { stiffness: 7.5e7, exponent: 1.0, restitution: 0.6 };
     let peak = |step_s: f64| {
         let mut v = s.clone();
-        v.spec.time.step_s = step_s;
+        v.time.step_s = step_s;
         let (summary, _) = run(&v, Some(Fidelity::Modal { modes: 3 })).unwrap();
         let first = &summary.pairs[0].impacts[0];
         (summary.pairs[0].peak_force_n, first.duration_s())
@@ -95,12 +96,12 @@ fn a_coarse_step_misses_the_peak_under_the_stiffest_dampener() {
 fn the_friction_clamps_jaws_stay_at_the_strings_surface_where_they_used_to_sink_through() {
     let mut s = implicit("default");
     let (rigid, _) = run(&s, Some(Fidelity::Fe)).unwrap();
-    if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
-        *clamp = Clamp::Friction;
+    if let Some(held) = s.payload.string_mut() {
+        held.clamp = Clamp::Friction;
     }
     for (fidelity, step_s) in [(Fidelity::Fe, 2e-3), (Fidelity::Modal { modes: 3 }, 2.5e-4)] {
         let mut v = s.clone();
-        v.spec.time.step_s = step_s;
+        v.time.step_s = step_s;
         let (summary, _) = run(&v, Some(fidelity)).unwrap_or_else(|e| panic!("{fidelity} at {step_s} s: {e}"));
         let slip = summary.string_slip.unwrap();
         let peak = summary.pairs[0].peak_force_n;
@@ -123,8 +124,8 @@ fn the_friction_clamps_jaws_stay_at_the_strings_surface_where_they_used_to_sink_
 #[test]
 fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
     let mut s = scenario("default");
-    s.spec.time.settle_s = 0.0;
-    s.spec.integrator = IntegratorKind::SymplecticEuler;
+    s.time.settle_s = 0.0;
+    s.integrator = IntegratorKind::SymplecticEuler;
     let eight = Some(Fidelity::Modal { modes: 8 });
     let Err(SceneError::Diverged { t_s, what, advice }) = run(&s, eight) else { panic!("ω·dt = 4.6 must diverge") };
     println!("diverged at {t_s} s: {what}\nadvice: {advice}");
@@ -136,13 +137,12 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
         .and_then(|rest| rest.split_whitespace().next())
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no step in the advice: {advice}"));
-    s.spec.time.step_s = advised;
-    s.spec.drive = pipearm::scenario::DriveSpec::Hold { angle_deg: 0.0 };
-    s.spec.time.settle_s = 2.0;
-    let s = Scenario::from_spec(&s.path, s.spec).unwrap();
+    s.time.step_s = advised;
+    s.drive.motion = DriveSpec::Hold { angle_deg: 0.0 }.motion().unwrap();
+    s.time.settle_s = 2.0;
     run(&s, eight).expect("the advised step is stable");
     let mut s = s;
-    s.spec.integrator = IntegratorKind::ExplicitEuler;
+    s.integrator = IntegratorKind::ExplicitEuler;
     let Err(SceneError::Diverged { advice, .. }) = run(&s, eight) else { panic!("explicit Euler must diverge") };
     assert!(advice.contains("generalized-alpha"), "{advice}");
 }
@@ -150,21 +150,21 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
 #[test]
 fn the_rapier_pad_body_past_its_explicit_limit_is_stopped_and_the_advice_names_the_limit() {
     let mut s = scenario("default");
-    s.spec.contact.method = pipearm::scenario::ContactMethod::Rapier;
+    s.contact.method = ContactMethod::Rapier;
     // The shipped pad's law made linear with the damping of its restitution on the arm (what
     // `pipearm bench` runs): the pad body's explicit limit is 82 µs.
     let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.4e4 };
-    s.spec.dampeners[0].law = law;
-    s.spec.time.settle_s = 0.5;
-    let limit = law.explicit_body_limit_s(s.spec.contact.pad_mass_kg).unwrap();
+    s.dampeners[0].law = law;
+    s.time.settle_s = 0.5;
+    let limit = law.explicit_body_limit_s(s.contact.pad_mass_kg).unwrap();
     assert!((limit - 8.2e-5).abs() < 1e-6, "{limit}");
-    s.spec.time.step_s = 1e-3;
+    s.time.step_s = 1e-3;
     let Err(SceneError::Diverged { what, advice, .. }) = run(&s, None) else { panic!("1 ms is 12 times the limit") };
     println!("1 ms: {what}; {advice}");
     assert!(what.contains("compressed") || what.contains("energy"), "{what}");
     assert!(advice.contains("compliant") && advice.contains(&format!("{limit:.3e}")), "{advice}");
     // The remedy the advice names: below the limit it runs.
-    s.spec.time.step_s = 0.75 * limit;
+    s.time.step_s = 0.75 * limit;
     let (summary, _) = run(&s, None).expect("below the pad body's limit");
     assert!(summary.pairs[0].peak_force_n > 0.0);
 }

@@ -7,10 +7,11 @@ use pipearm::arm::{ArmModel, ArmOptions, ArmSample, ArmSimulation, Fidelity, Hub
 use pipearm::beam::BeamModel;
 use pipearm::drive::{MotionProfile, SCurveLimit, TrapezoidLimit};
 use pipearm::integrate::IntegratorKind;
+use pipearm::model::Model;
 use pipearm::scenario::Scenario;
 
-fn default_scenario() -> Scenario {
-    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap()
+fn default_scenario() -> Model {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model
 }
 
 fn profiles() -> Vec<MotionProfile> {
@@ -23,12 +24,12 @@ fn profiles() -> Vec<MotionProfile> {
     ]
 }
 
-fn arm(scenario: &Scenario, fidelity: Fidelity, options: ArmOptions) -> ArmModel {
+fn arm(scenario: &Model, fidelity: Fidelity, options: ArmOptions) -> ArmModel {
     ArmModel::new(BeamModel::new(scenario.beam_spec().unwrap()).unwrap(), fidelity, options).unwrap()
 }
 
 fn lift(
-    scenario: &Scenario,
+    scenario: &Model,
     fidelity: Fidelity,
     options: ArmOptions,
     profile: &MotionProfile,

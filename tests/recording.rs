@@ -38,7 +38,7 @@ fn read_back(path: &Path, wanted: &str) -> (BTreeSet<String>, Vec<f64>) {
 fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
-    let (summary, series) = run_with(&scenario, &options).unwrap();
+    let (summary, series) = run_with(&scenario.model, &options).unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-recording-{}.rrd", std::process::id()));
     write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
     let force = force_entity("vertical_stop");
@@ -74,7 +74,7 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
 fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) {
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
-    let (summary, series) = run_with(&scenario, &options).unwrap();
+    let (summary, series) = run_with(&scenario.model, &options).unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-blueprint-{}.rrd", std::process::id()));
     write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
     let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());

@@ -10,11 +10,12 @@ use pipearm::beam::BeamModel;
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
 use pipearm::run::run;
-use pipearm::scenario::{ContactMethod, Scenario};
+use pipearm::model::{Clamp, ContactMethod, Model};
+use pipearm::scenario::{DriveSpec, Scenario};
 use pipearm::scene::Scene;
 
-fn scenario(name: &str) -> Scenario {
-    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap()
+fn scenario(name: &str) -> Model {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap().model
 }
 
 #[test]
@@ -34,14 +35,14 @@ fn the_default_arm_strikes_its_stop_repeatedly() {
 #[test]
 fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
     let mut s = scenario("lowering");
-    s.spec.physics.gravity_m_s2 = 0.0;
+    s.physics.gravity_m_s2 = 0.0;
     let (k_lin, k_hertz) = (7.5e6, 2.0e9);
     for law in [
         ForceLaw::Linear { stiffness_n_m: k_lin, damping_n_s_m: 0.0 },
         ForceLaw::HuntCrossley { stiffness: k_hertz, exponent: 1.5, restitution: 1.0 },
     ] {
-        s.spec.dampeners[0].law = law;
-        s.spec.dampeners[0].gap_m = 0.0;
+        s.dampeners[0].law = law;
+        s.dampeners[0].gap_m = 0.0;
         let mut scene = Scene::with_fidelity(&s, Fidelity::Rigid).unwrap();
         let beam = BeamModel::new(s.beam_spec().unwrap()).unwrap();
         let arm = ArmModel::new(beam, Fidelity::Rigid, s.arm_options()).unwrap();
@@ -55,13 +56,13 @@ fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
         let rate = -0.02;
         sim.set_free_hub_rate(rate).unwrap();
         scene.arm = sim;
-        let r = s.spec.dampeners[0].station_m;
+        let r = s.dampeners[0].station_m;
         let (m_eff, v0) = (inertia / (r * r), rate.abs() * r);
         let (mut peak, mut t_first, mut t_last) = (0.0_f64, f64::NAN, f64::NAN);
         let h = 2e-5;
         for _ in 0..5000 {
             scene.step(h).unwrap();
-            let f = scene.pads[0].force_n;
+            let f = scene.pads().next().unwrap().force_n;
             let t = scene.arm.time_s();
             if f > 0.0 {
                 peak = peak.max(f);
@@ -88,11 +89,11 @@ fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
 #[test]
 fn compliant_and_rapier_methods_agree_on_peak_force() {
     let mut s = scenario("default");
-    s.spec.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
-    s.spec.time.settle_s = 3.0;
+    s.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
+    s.time.settle_s = 3.0;
     let (compliant, _) = run(&s, None).unwrap();
-    s.spec.contact.method = ContactMethod::Rapier;
-    s.spec.time.step_s = 2.5e-4;
+    s.contact.method = ContactMethod::Rapier;
+    s.time.step_s = 2.5e-4;
     let (rapier, _) = run(&s, None).unwrap();
     let (a, b) = (compliant.pairs[0].peak_force_n, rapier.pairs[0].peak_force_n);
     println!("peak force: compliant {a:.1} N, rapier {b:.1} N");
@@ -111,7 +112,7 @@ fn the_heavy_string_runs_stable_at_the_default_step() {
     let (coarse, series) = run(&s, None).unwrap();
     assert!(series.tip_deflection_m.iter().all(|d| d[1].is_finite() && d[1].abs() < 0.02 * 9.0));
     let mut fine = s.clone();
-    fine.spec.time.step_s /= 4.0;
+    fine.time.step_s /= 4.0;
     let (fine, _) = run(&fine, None).unwrap();
     let (a, b) = (coarse.pairs[0].peak_force_n, fine.pairs[0].peak_force_n);
     println!("4-1/2 in string: peak force {a:.1} N at dt, {b:.1} N at dt/4");
@@ -124,23 +125,19 @@ fn the_heavy_string_runs_stable_at_the_default_step() {
 fn friction_hold(squeeze_n: f64, seconds: f64) -> (f64, f64) {
     let mut s = scenario("default");
     let mu = 0.3;
-    if let pipearm::scenario::PayloadSpec::String { clamp, friction_coefficient, squeeze_n: n, .. } =
-        &mut s.spec.payload
-    {
-        *clamp = pipearm::scenario::Clamp::Friction;
-        *friction_coefficient = mu;
-        *n = Some(squeeze_n);
-    }
-    s.spec.drive = pipearm::scenario::DriveSpec::Hold { angle_deg: 90.0 };
-    s.motion = s.spec.drive.motion().unwrap();
-    s.spec.dampeners.clear();
+    let held = s.payload.string_mut().unwrap();
+    held.clamp = Clamp::Friction;
+    held.friction.friction_coefficient = mu;
+    held.friction.squeeze_n = Some(squeeze_n);
+    s.drive.motion = DriveSpec::Hold { angle_deg: 90.0 }.motion().unwrap();
+    s.dampeners.clear();
     let mut scene = Scene::new(&s).unwrap();
     let h = 1e-3;
     for _ in 0..(seconds / h) as usize {
         scene.step(h).unwrap();
     }
-    let mass = s.pipe_string().unwrap().unwrap().mass_kg();
-    (scene.grip.as_ref().unwrap().slip_m, mass)
+    let mass = s.payload.mass_kg();
+    (scene.grip().unwrap().slip_m, mass)
 }
 
 #[test]
@@ -163,8 +160,8 @@ fn the_friction_clamp_holds_below_the_slip_load_and_slips_above_it() {
 #[test]
 fn the_friction_clamped_heavy_string_lifts_stable_at_the_default_step() {
     let mut s = scenario("string_4half");
-    if let pipearm::scenario::PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
-        *clamp = pipearm::scenario::Clamp::Friction;
+    if let Some(held) = s.payload.string_mut() {
+        held.clamp = Clamp::Friction;
     }
     let (friction, series) = run(&s, None).unwrap();
     let (rigid, _) = run(&scenario("string_4half"), None).unwrap();

@@ -26,7 +26,7 @@ fn free_lift(step_s: f64, free: Option<(f64, f64)>) -> Scenario {
 }
 
 fn run_modal3(s: &Scenario) -> (RunSummary, Series) {
-    run(s, Some(Fidelity::Modal { modes: 3 })).unwrap()
+    run(&s.model, Some(Fidelity::Modal { modes: 3 })).unwrap()
 }
 
 #[test]

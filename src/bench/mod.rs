@@ -22,7 +22,7 @@ use crate::arm::Fidelity;
 use crate::contact::ForceLaw;
 use crate::integrate::IntegratorKind;
 use crate::run::{RunOptions, RunSummary, Series, run_with};
-use crate::scenario::{Clamp, ContactMethod, PayloadSpec, Scenario};
+use crate::model::{Clamp, ContactMethod, DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Scene, SceneError};
 
 /// A run of the bench that failed for a reason other than divergence.
@@ -76,7 +76,7 @@ impl Variant {
         let step_ms = format!("{:.4e}", 1e3 * self.step_s).parse::<f64>().unwrap_or(f64::NAN);
         let mut label = format!("{model} {} {step_ms}ms", self.integrator.name());
         if let Some(free) = self.free_step_s {
-            let tolerance = self.tolerance_m.unwrap_or(crate::scenario::DEFAULT_TOLERANCE_M);
+            let tolerance = self.tolerance_m.unwrap_or(DEFAULT_TOLERANCE_M);
             label += &format!(" free<={}ms tol {tolerance:.0e}m", 1e3 * free);
         }
         if self.linear_pads {
@@ -96,19 +96,19 @@ impl Variant {
         self.linear_pads
     }
 
-    /// The scenario with this point's settings.
-    pub fn scenario(&self, base: &Scenario, linear_laws: &[ForceLaw]) -> Scenario {
+    /// The model with this point's settings.
+    pub fn model(&self, base: &Model, linear_laws: &[ForceLaw]) -> Model {
         let mut s = base.clone();
-        s.spec.integrator = self.integrator;
-        s.spec.time.step_s = self.step_s;
-        s.spec.time.free_step_s = self.free_step_s;
-        s.spec.time.tolerance_m = self.tolerance_m;
-        s.spec.contact.method = self.contact;
-        if let PayloadSpec::String { clamp, .. } = &mut s.spec.payload {
-            *clamp = self.clamp;
+        s.integrator = self.integrator;
+        s.time.step_s = self.step_s;
+        s.time.free_step_s = self.free_step_s;
+        s.time.tolerance_m = self.tolerance_m;
+        s.contact.method = self.contact;
+        if let Some(held) = s.payload.string_mut() {
+            held.clamp = self.clamp;
         }
         if self.linear_pads {
-            for (pad, law) in s.spec.dampeners.iter_mut().zip(linear_laws) {
+            for (pad, law) in s.dampeners.iter_mut().zip(linear_laws) {
                 pad.law = *law;
             }
         }
@@ -229,22 +229,19 @@ pub struct BenchResult {
 }
 
 /// The grid for a scene: each axis varied around the scene's own settings.
-pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
-    let h0 = scenario.spec.time.step_s;
+pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
+    let h0 = model.time.step_s;
     let steps: Vec<f64> = if quick { vec![0.5, 1.0, 2.0] } else { vec![0.125, 0.25, 0.5, 1.0, 2.0, 4.0] }
         .into_iter()
         .map(|f| f * h0)
         .collect();
-    let robot_elements = scenario.robot.arm.elements;
-    let base_clamp = match &scenario.spec.payload {
-        PayloadSpec::String { clamp, .. } => Some(*clamp),
-        _ => None,
-    };
+    let robot_elements = model.robot.arm.elements;
+    let base_clamp = model.payload.string().map(|held| held.clamp);
     let base = Variant {
         axis: "fidelity".into(),
         fidelity: auto,
         elements: None,
-        integrator: scenario.spec.integrator,
+        integrator: model.integrator,
         step_s: h0,
         free_step_s: None,
         tolerance_m: None,
@@ -290,7 +287,7 @@ pub fn grid(scenario: &Scenario, auto: Fidelity, quick: bool) -> Vec<Variant> {
         let coarse = steps.iter().filter(|&&h| fidelity != Fidelity::Fe || h >= 0.5 * h0);
         out.extend(coarse.map(|&step_s| Variant { axis: axis.clone(), fidelity, step_s, ..implicit.clone() }));
     }
-    if !scenario.spec.dampeners.is_empty() {
+    if !model.dampeners.is_empty() {
         // rapier's pad body is explicit: it needs steps well below the scene's (stability map).
         let fine = [h0 / 32.0, h0 / 16.0];
         for contact in [ContactMethod::Compliant, ContactMethod::Rapier] {
@@ -332,11 +329,10 @@ pub fn integrators() -> [IntegratorKind; 6] {
 
 /// Linear pad laws equivalent to the scene's: the tangent stiffness at `force_n` and the damping
 /// that gives the law's restitution on the arm's effective mass (ζ = −ln e / √(π² + ln² e)).
-pub fn linear_laws(scenario: &Scenario, force_n: f64) -> Result<Vec<ForceLaw>, SceneError> {
-    let scene = Scene::with_fidelity(scenario, Fidelity::Modal { modes: 3 })?;
+pub fn linear_laws(model: &Model, force_n: f64) -> Result<Vec<ForceLaw>, SceneError> {
+    let scene = Scene::with_fidelity(model, Fidelity::Modal { modes: 3 })?;
     let masses = scene.pad_effective_masses_kg();
-    Ok(scenario
-        .spec
+    Ok(model
         .dampeners
         .iter()
         .zip(masses)
@@ -356,7 +352,7 @@ pub fn linear_laws(scenario: &Scenario, force_n: f64) -> Result<Vec<ForceLaw>, S
 
 /// Runs a variant `repeats` times; the first run's results, the median wall time.
 pub fn run_timed(
-    scenario: &Scenario,
+    model: &Model,
     fidelity: Fidelity,
     repeats: usize,
 ) -> Result<(RunSummary, Series, f64), SceneError> {
@@ -365,7 +361,7 @@ pub fn run_timed(
     let mut first = None;
     for _ in 0..repeats.max(1) {
         let started = Instant::now();
-        let (summary, series) = run_with(scenario, &options)?;
+        let (summary, series) = run_with(model, &options)?;
         // The whole run, model building included: what a user waits for.
         walls.push(started.elapsed().as_secs_f64());
         first.get_or_insert((summary, series));
@@ -413,8 +409,8 @@ fn relative(a: f64, b: f64) -> f64 {
 
 /// The reference's step: an eighth of the scene's, or a 200th of its strongest impact if that is
 /// shorter (measured on a run of the scene's own model and step), s.
-pub fn reference_step_s(base: &Scenario) -> Result<f64, SceneError> {
-    let h0 = base.spec.time.step_s;
+pub fn reference_step_s(base: &Model) -> Result<f64, SceneError> {
+    let h0 = base.time.step_s;
     let (summary, _) = crate::run::run(base, None)?;
     let strongest = summary
         .pairs
@@ -428,7 +424,7 @@ pub fn reference_step_s(base: &Scenario) -> Result<f64, SceneError> {
 /// Computes the reference of a variant's physics: the full FE arm at the robot's mesh and
 /// [`reference_step_s`], with a rigid clamp, and its convergence evidence.
 pub fn reference(
-    base: &Scenario,
+    base: &Model,
     physics_of: &Variant,
     linear: &[ForceLaw],
     h_ref: f64,
@@ -451,7 +447,7 @@ pub fn reference(
     for factor in [1.0, 2.0, 4.0] {
         let variant = at(factor * h_ref, None);
         let (summary, series) = run_with(
-            &variant.scenario(base, linear),
+            &variant.model(base, linear),
             &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() },
         )?;
         steps.push((variant.step_s, peak_force_n(&summary), summary.residual.frequency_hz));
@@ -470,7 +466,7 @@ pub fn reference(
         let n = 2 * base.robot.arm.elements;
         let variant = at(2.0 * h_ref, Some(n));
         let (summary, _) = run_with(
-            &variant.scenario(base, linear),
+            &variant.model(base, linear),
             &RunOptions { fidelity: Some(Fidelity::Fe), ..RunOptions::default() },
         )?;
         let f = peak_force_n(&summary);
@@ -490,13 +486,13 @@ pub fn reference(
 
 /// Runs one point against its reference.
 pub fn measure(
-    base: &Scenario,
+    base: &Model,
     v: &Variant,
     linear: &[ForceLaw],
     r: &Reference,
     repeats: usize,
 ) -> Result<Point, SceneError> {
-    let outcome = match run_timed(&v.scenario(base, linear), v.fidelity, repeats) {
+    let outcome = match run_timed(&v.model(base, linear), v.fidelity, repeats) {
         Ok((summary, series, cost_s_per_s)) => {
             let peak = peak_force_n(&summary);
             let f = summary.residual.frequency_hz;
@@ -517,42 +513,42 @@ pub fn measure(
 
 /// Runs the whole bench of a scene; `progress` is told each point's label as it starts.
 pub fn bench(
-    scenario: &Scenario,
+    model: &Model,
     options: &BenchOptions,
     progress: &mut dyn FnMut(&str, usize, usize),
 ) -> Result<BenchResult, BenchError> {
-    let auto = scenario.fidelity().map_err(|e| labelled("model choice")(e.into()))?.fidelity;
-    let variants = grid(scenario, auto, options.quick);
+    let auto = crate::select::fidelity(model).map_err(|e| labelled("model choice")(e.into()))?.fidelity;
+    let variants = grid(model, auto, options.quick);
     let main_physics = &variants[0];
     let total = variants.len() + 3;
     progress("reference (fe, fine step)", 0, total);
-    let h_ref = reference_step_s(scenario).map_err(labelled("reference step"))?;
+    let h_ref = reference_step_s(model).map_err(labelled("reference step"))?;
     let mut references = vec![
-        reference(scenario, main_physics, &[], h_ref, options.mesh_check)
+        reference(model, main_physics, &[], h_ref, options.mesh_check)
             .map_err(labelled("reference (fe, fine step)"))?,
     ];
-    let linear = linear_laws(scenario, references[0].peak_force_n).map_err(labelled("linear pad laws"))?;
+    let linear = linear_laws(model, references[0].peak_force_n).map_err(labelled("linear pad laws"))?;
     let mut points = Vec::with_capacity(variants.len());
     for (i, v) in variants.iter().enumerate() {
         progress(&v.label(), i + 1, total);
         let r = match references.iter().position(|r| r.variant.physics() == v.physics()) {
             Some(k) => &references[k],
             None => {
-                let r = reference(scenario, v, &linear, h_ref, false)
+                let r = reference(model, v, &linear, h_ref, false)
                     .map_err(labelled(format!("reference of {}", v.label())))?;
                 references.push(r);
                 references.last().expect("just pushed")
             }
         };
-        points.push(measure(scenario, v, &linear, r, options.repeats).map_err(labelled(v.label()))?);
+        points.push(measure(model, v, &linear, r, options.repeats).map_err(labelled(v.label()))?);
     }
     progress("stability map", total - 2, total);
     let stability =
-        stability::map(scenario, auto, &references[0], &linear, options.quick).map_err(labelled("stability map"))?;
+        stability::map(model, auto, &references[0], &linear, options.quick).map_err(labelled("stability map"))?;
     progress("done", total, total);
     Ok(BenchResult {
-        scenario: scenario.spec.name.clone(),
-        base_step_s: scenario.spec.time.step_s,
+        scenario: model.name.clone(),
+        base_step_s: model.time.step_s,
         auto_fidelity: auto,
         references,
         points,

@@ -17,9 +17,9 @@ use crate::beam::BeamModel;
 use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
-use crate::robot::StringSpec;
+use crate::robot::{PipeString, pipe_size};
 use crate::run::{RunOptions, run_with};
-use crate::scenario::{Clamp, PayloadSpec, Scenario};
+use crate::model::{Clamp, Model};
 use crate::scene::{Scene, SceneError};
 
 /// Smallest ω·dt tried: below it a method that is still unstable is called unstable at any step.
@@ -95,10 +95,10 @@ pub struct StabilityMap {
 }
 
 /// The undamped arm of a scenario at `fidelity` (`elements` overrides the robot's mesh).
-pub fn undamped_arm(scenario: &Scenario, fidelity: Fidelity) -> Result<ArmModel, SceneError> {
-    let spec = scenario.beam_spec()?;
+pub fn undamped_arm(model: &Model, fidelity: Fidelity) -> Result<ArmModel, SceneError> {
+    let spec = model.beam_spec()?;
     let beam = BeamModel::new(spec).map_err(crate::arm::ArmError::from)?;
-    let options = ArmOptions { damping_ratios: vec![0.0], ..scenario.arm_options() };
+    let options = ArmOptions { damping_ratios: vec![0.0], ..model.arm_options() };
     Ok(ArmModel::new(beam, fidelity, options)?)
 }
 
@@ -169,7 +169,7 @@ pub fn arm_limit(arm: &ArmModel, integrator: IntegratorKind) -> Limit {
 
 /// Largest step at which a scene run finishes without the divergence guard stopping it.
 pub fn scene_limit(
-    scenario: &Scenario,
+    model: &Model,
     fidelity: Fidelity,
     lo: f64,
     hi: f64,
@@ -177,8 +177,8 @@ pub fn scene_limit(
 ) -> Result<Limit, SceneError> {
     let mut error = None;
     let limit = bisect(lo, hi, iterations, |h| {
-        let mut s = scenario.clone();
-        s.spec.time.step_s = h;
+        let mut s = model.clone();
+        s.time.step_s = h;
         match run_with(&s, &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() }) {
             Ok(_) => true,
             Err(SceneError::Diverged { .. }) => false,
@@ -196,7 +196,7 @@ pub fn scene_limit(
 
 /// The stability map of a scene.
 pub fn map(
-    scenario: &Scenario,
+    model: &Model,
     auto: Fidelity,
     reference: &Reference,
     linear: &[ForceLaw],
@@ -211,26 +211,25 @@ pub fn map(
     let mut integrators = super::integrators().to_vec();
     integrators.insert(2, IntegratorKind::Newmark { beta: 1.0 / 6.0, gamma: 0.5 });
     for fidelity in dedup(fidelities) {
-        let model = undamped_arm(scenario, fidelity)?;
+        let undamped = undamped_arm(model, fidelity)?;
         let name = match fidelity {
-            Fidelity::Fe => format!("fe{}", scenario.robot.arm.elements),
+            Fidelity::Fe => format!("fe{}", model.robot.arm.elements),
             f => f.to_string(),
         };
         for &integrator in &integrators {
             arm.push(ArmRow {
                 integrator,
                 model: name.clone(),
-                omega_max_rad_s: model.highest_omega_rad_s,
+                omega_max_rad_s: undamped.highest_omega_rad_s,
                 theory_omega_dt: integrator.stability_limit_omega_dt(),
-                measured: arm_limit(&model, integrator),
+                measured: arm_limit(&undamped, integrator),
             });
         }
     }
-    let scene = Scene::with_fidelity(scenario, auto)?;
+    let scene = Scene::with_fidelity(model, auto)?;
     let masses = scene.pad_effective_masses_kg();
     let penalties = scene.penalty_limits_s(reference.peak_force_n);
-    let contact: Vec<ContactRow> = scenario
-        .spec
+    let contact: Vec<ContactRow> = model
         .dampeners
         .iter()
         .zip(masses.into_iter().zip(penalties))
@@ -241,15 +240,15 @@ pub fn map(
                 effective_mass_kg: m?,
                 stiffness_n_m: pad.law.tangent_stiffness_at_force(reference.peak_force_n),
                 penalty_limit_s: penalty?,
-                pad_spring_limit_s: linear.explicit_body_limit_s(scenario.spec.contact.pad_mass_kg).unwrap_or(f64::NAN),
+                pad_spring_limit_s: linear.explicit_body_limit_s(model.contact.pad_mass_kg).unwrap_or(f64::NAN),
             })
         })
         .collect();
-    let h0 = scenario.spec.time.step_s;
+    let h0 = model.time.step_s;
     let mut rows = Vec::new();
     if !contact.is_empty() {
-        let mut explicit = scenario.clone();
-        explicit.spec.integrator = IntegratorKind::SymplecticEuler;
+        let mut explicit = model.clone();
+        explicit.integrator = IntegratorKind::SymplecticEuler;
         let arm_limit_s = 2.0 / scene.arm.arm.highest_omega_rad_s.max(1e-9);
         let penalty = contact.iter().map(|c| c.penalty_limit_s).fold(f64::INFINITY, f64::min);
         let predicted = penalty.min(arm_limit_s);
@@ -260,7 +259,7 @@ pub fn map(
             predicted_s: Some(predicted),
         });
     }
-    let clamp = clamp_sweep(scenario, auto, quick)?;
+    let clamp = clamp_sweep(model, auto, quick)?;
     Ok(StabilityMap { arm, contact, scene: rows, clamp })
 }
 
@@ -268,25 +267,28 @@ pub fn map(
 /// auto model and at eight modes, under generalized-α (so that a divergence is the clamp's
 /// coupling, not an explicit scene integrator's limit on the arm): whether each run holds, and
 /// its slip.
-fn clamp_sweep(scenario: &Scenario, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
-    if !matches!(scenario.spec.payload, PayloadSpec::String { .. }) {
+fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
+    if model.payload.string().is_none() {
         return Ok(Vec::new());
     }
-    let h0 = scenario.spec.time.step_s;
+    let h0 = model.time.step_s;
     let factors: &[f64] = if quick { &[0.5, 1.0, 2.0] } else { &[0.125, 0.25, 0.5, 1.0, 2.0, 4.0] };
     let models = if quick { vec![auto] } else { dedup(vec![auto, Fidelity::Modal { modes: 8 }]) };
     let mut out = Vec::new();
-    for size in ["2-7/8", "4-1/2"] {
-        let mut s = scenario.clone();
-        s.spec.integrator = IntegratorKind::default();
-        if let PayloadSpec::String { string, clamp, .. } = &mut s.spec.payload {
-            *string = StringSpec { size: size.into(), length_m: None };
-            *clamp = Clamp::Friction;
+    // Both sizes are in the compiled-in catalogue (robot::pipes' tests).
+    let sizes = ["2-7/8", "4-1/2"].into_iter().filter_map(|size| pipe_size(size).ok());
+    for pipe in sizes {
+        let size = pipe.size;
+        let mut s = model.clone();
+        s.integrator = IntegratorKind::default();
+        if let Some(held) = s.payload.string_mut() {
+            held.pipe = PipeString { pipe, length_m: pipe.joint_length_m };
+            held.clamp = Clamp::Friction;
         }
-        let string_kg = s.pipe_string()?.map_or(0.0, |p| p.mass_kg());
+        let string_kg = s.payload.mass_kg();
         for &model in &models {
             for &f in factors {
-                s.spec.time.step_s = f * h0;
+                s.time.step_s = f * h0;
                 let outcome = match run_with(&s, &RunOptions { fidelity: Some(model), ..RunOptions::default() }) {
                     Ok((summary, _)) => ClampOutcome::Held {
                         max_slip_m: summary.string_slip.map_or(0.0, |g| g.max_slip_m),

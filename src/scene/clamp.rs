@@ -13,20 +13,30 @@
 //! `detect_collisions` on a world, as the `compliant` pads once did every step (they now query
 //! parry directly), stops rapier 0.36 from moving that world's dynamic bodies in later steps.
 
+use std::any::Any;
+
 use rapier3d_f64::prelude::*;
 
-use super::geometry::ArmPiece;
-use crate::robot::{CarriedBody, Mount, Shape};
-use crate::scenario::{FrictionClamp, Scenario, ScenarioError};
+use super::geometry::{ArmPiece, ArmView};
+use super::source::ContactSource;
+use crate::arm::{ArmContact, GeneralizedLoad};
+use crate::model::HeldString;
+use crate::robot::{CarriedBody, Mount, Robot, Shape};
 
 /// Largest step of the clamp's world, s: the jaw–string contact is stiff, and at the arm's
 /// 2 ms step rapier's friction lets a held string creep (17 mm over the default lift, measured).
 const CLAMP_SUBSTEP_S: f64 = 2.5e-4;
 
+/// Deepest a jaw may sink into a clamped string before the contact is meaningless, m (with the
+/// clamp's stiff contact it sinks ≈ 0.1 mm; rapier's default soft contact let it reach the axis).
+const MAX_JAW_SINKING_M: f64 = 5e-3;
+
 /// A string held by friction, its jaws, and what they do to the arm.
 pub struct FrictionGrip {
     world: PhysicsWorld,
     palm: RigidBodyHandle,
+    /// Index of the scene's piece that carries the jaws.
+    palm_piece: usize,
     /// Station of the gripper, m.
     pub station_m: f64,
     string: RigidBodyHandle,
@@ -46,22 +56,31 @@ pub struct FrictionGrip {
     jaws: Vec<(RigidBodyHandle, Vector, f64)>,
     /// The string's outer radius, m.
     radius_m: f64,
+    /// The string's length, m.
+    length_m: f64,
+}
+
+/// Where a friction clamp sits on the arm: the piece that carries its jaws and the string's.
+pub struct ClampPlacement<'a> {
+    /// Index of the palm among the scene's pieces.
+    pub palm_index: usize,
+    /// The palm.
+    pub palm: &'a ArmPiece,
+    /// Its world pose now.
+    pub palm_pose: Pose,
+    /// The string, as it rides on the arm with a rigid clamp.
+    pub string: &'a ArmPiece,
 }
 
 impl FrictionGrip {
-    /// Builds a palm at `palm_pose` (the gripper piece's pose), and the string and jaws on it.
-    pub fn new(
-        scenario: &Scenario,
-        clamp: FrictionClamp,
-        palm: &ArmPiece,
-        palm_pose: Pose,
-        string_piece: &ArmPiece,
-        string_shape: SharedShape,
-    ) -> Result<Self, ScenarioError> {
-        let string = scenario.pipe_string()?.expect("a friction clamp holds a string");
+    /// Builds a palm where `at` says, and the string and the robot's jaws on it.
+    pub fn new(held: &HeldString, robot: &Robot, at: ClampPlacement, gravity_m_s2: f64, step_s: f64) -> Self {
+        let (palm, palm_pose, string_piece) = (at.palm, at.palm_pose, at.string);
+        let clamp = held.friction;
+        let string = held.pipe;
         let mut world = PhysicsWorld::new();
-        world.gravity = Vector::new(0.0, -scenario.spec.physics.gravity_m_s2, 0.0);
-        world.integration_parameters.dt = scenario.spec.time.step_s;
+        world.gravity = Vector::new(0.0, -gravity_m_s2, 0.0);
+        world.integration_parameters.dt = step_s;
         // rapier's contacts are soft (30 Hz by default): under the jaws' tens of kilonewtons on a
         // 12 kg jaw that lets a jaw sink ≈ F / (m ω²) = 0.1 m — through the string (measured:
         // the jaws met at its axis within 0.5 s). At 1 kHz the sinking is 0.1 mm.
@@ -75,12 +94,12 @@ impl FrictionGrip {
         );
         let string_pose = palm_pose * Pose::from_parts(string_centre, string_piece.local_rotation);
         let string_body = world.insert_body(RigidBodyBuilder::dynamic().pose(string_pose).can_sleep(false));
-        let collider = ColliderBuilder::new(string_shape).mass(string.mass_kg()).friction(clamp.friction_coefficient);
+        let collider = ColliderBuilder::new(string_piece.shape.clone()).mass(string.mass_kg()).friction(clamp.friction_coefficient);
         world.insert_collider(collider, Some(string_body));
         let radius = 0.5 * string.pipe.outer_diameter_m;
         let mut squeeze_n = f64::INFINITY;
         let mut jaws = Vec::new();
-        for jaw in scenario.robot.carried.iter().filter(|b| b.mount.is_prismatic()) {
+        for jaw in robot.carried.iter().filter(|b| b.mount.is_prismatic()) {
             let Mount::Prismatic { axis, effort_n, travel_m } = jaw.mount else { continue };
             let n = clamp.squeeze_n.unwrap_or(effort_n);
             squeeze_n = squeeze_n.min(n);
@@ -92,6 +111,7 @@ impl FrictionGrip {
         let mut grip = FrictionGrip {
             world,
             palm: palm_body,
+            palm_piece: at.palm_index,
             station_m: palm.station_m,
             string: string_body,
             string_mass_kg: string.mass_kg(),
@@ -103,9 +123,10 @@ impl FrictionGrip {
             squeeze_n,
             jaws,
             radius_m: radius,
+            length_m: string.length_m,
         };
         grip.initial_offset_m = grip.axial_offset();
-        Ok(grip)
+        grip
     }
 
     /// The jaws' sinking into the string now ([`Self::jaw_sinking_m`]), m.
@@ -152,6 +173,48 @@ impl FrictionGrip {
             self.correction_force_n = [force.x, force.y];
         }
         self.last_relative_velocity = Some(relative);
+    }
+}
+
+impl ContactSource for FrictionGrip {
+    fn add_loads(&self, arm: &ArmView, load: &mut GeneralizedLoad) {
+        load.add(&arm.arm.point_force(self.station_m, self.correction_force_n, arm.hub.angle_rad, arm.q));
+    }
+
+    fn advance(&mut self, arm: &ArmView, h_s: f64) {
+        let palm_pose = arm.pose(&arm.pieces[self.palm_piece]);
+        self.step(palm_pose, h_s);
+    }
+
+    fn measure(&mut self, _arm: &ArmView, _contacts: &[ArmContact]) {}
+
+    fn allows_free_step(&self, _arm: &ArmView, _h_s: f64) -> bool {
+        false
+    }
+
+    /// The slip not finite, the jaws sunk into the string, or the string out of the jaws.
+    fn fault(&self) -> Option<String> {
+        if !self.slip_m.is_finite() {
+            Some("the string's slip is no longer finite".into())
+        } else if self.jaw_sinking_m > MAX_JAW_SINKING_M {
+            Some(format!("the clamp's jaws sank {:.1} mm into the string", 1e3 * self.jaw_sinking_m))
+        } else if self.slip_m.abs() > self.length_m {
+            Some(format!("the string slid {:.3} m in the jaws, out of its {:.2} m length", self.slip_m, self.length_m))
+        } else {
+            None
+        }
+    }
+
+    fn divergence_advice(&self, step_s: f64) -> Option<String> {
+        Some(format!(
+            "the friction clamp held at every step and model measured (docs/accuracy.md); check its squeeze_n and \
+             friction_coefficient against the string's weight, try step_s = {:.3e} s, or a rigid clamp",
+            0.5 * step_s
+        ))
+    }
+
+    fn as_any(&self) -> &dyn Any {
+        self
     }
 }
 

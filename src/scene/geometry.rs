@@ -4,10 +4,11 @@ use nalgebra::DVector;
 use rapier3d_f64::math::glamx::EulerRot;
 use rapier3d_f64::prelude::*;
 
-use crate::arm::StationRows;
+use crate::arm::{ArmModel, StationRows};
+use crate::beam::BeamModel;
 use crate::drive::DriveState;
+use crate::model::Model;
 use crate::robot::Shape;
-use crate::scenario::{PayloadSpec, Scenario, ScenarioError};
 
 /// A rapier shape riding on the arm at a station.
 #[derive(Debug, Clone)]
@@ -31,11 +32,11 @@ pub struct ArmPiece {
     pub half_extents_m: [f64; 3],
     /// Its station's shape rows over the arm's coordinates (set when the scene is built).
     pub rows: StationRows,
-    /// Whether it can come near a pad (set when the scene is built): only those are moved in
-    /// rapier every step.
+    /// Whether it can come near a pad (set when the scene is built): only those are posed for
+    /// contact every step.
     pub near_pad: bool,
-    pub(crate) body: RigidBodyHandle,
-    pub(crate) collider: ColliderHandle,
+    /// Its collision shape, in its own frame.
+    pub shape: SharedShape,
 }
 
 impl ArmPiece {
@@ -48,11 +49,10 @@ impl ArmPiece {
 
     fn new(
         name: &str,
-        station_m: f64,
-        lateral_m: f64,
-        normal_offset_m: f64,
+        [station_m, lateral_m, normal_offset_m]: [f64; 3],
         local_rotation: Rotation,
         half: [f64; 3],
+        shape: SharedShape,
     ) -> Self {
         ArmPiece {
             name: name.into(),
@@ -65,8 +65,7 @@ impl ArmPiece {
             half_extents_m: half,
             rows: StationRows([DVector::zeros(0), DVector::zeros(0), DVector::zeros(0)]),
             near_pad: true,
-            body: RigidBodyHandle::invalid(),
-            collider: ColliderHandle::invalid(),
+            shape,
         }
     }
 
@@ -80,32 +79,26 @@ impl ArmPiece {
     }
 }
 
-/// Every shape of the scene that rides on the arm, with its collision shape.
-pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape)>, ScenarioError> {
-    let robot = &scenario.robot;
-    let beam = crate::beam::BeamModel::new(scenario.beam_spec()?).map_err(|e| ScenarioError::Invalid {
-        path: scenario.path.clone(),
-        key: "robot".into(),
-        message: e.to_string(),
-    })?;
+/// Every shape of the scene that rides on the arm: the hub, the arm's elements (`beam`'s mesh),
+/// the carried bodies and a held string.
+pub fn shapes_of_robot(model: &Model, beam: &BeamModel) -> Vec<ArmPiece> {
+    let robot = &model.robot;
     let (width, depth) = (robot.arm.width_m(), robot.arm.depth_m());
     // The hub: a drum on the pivot, turning with the drive.
     let (hub_radius, hub_half_length) = (0.6 * depth, 0.5 * width.max(depth));
     let drum = Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2);
-    let mut pieces = vec![(
-        ArmPiece::new("hub", 0.0, 0.0, 0.0, drum, [hub_radius, hub_half_length, hub_radius]),
-        SharedShape::cylinder(hub_half_length, hub_radius),
-    )];
+    let hub_shape = SharedShape::cylinder(hub_half_length, hub_radius);
+    let mut pieces = vec![ArmPiece::new("hub", [0.0; 3], drum, [hub_radius, hub_half_length, hub_radius], hub_shape)];
     for el in &beam.elements {
         let half = [0.5 * el.length_m, 0.5 * depth, 0.5 * width];
-        let mut piece = ArmPiece::new("arm", el.x0_m + 0.5 * el.length_m, 0.0, 0.0, Rotation::IDENTITY, half);
+        let shape = SharedShape::cuboid(half[0], half[1], half[2]);
+        let mut piece = ArmPiece::new("arm", [el.x0_m + 0.5 * el.length_m, 0.0, 0.0], Rotation::IDENTITY, half, shape);
         piece.is_arm_element = true;
         piece.depth_m = depth;
-        pieces.push((piece, SharedShape::cuboid(half[0], half[1], half[2])));
+        pieces.push(piece);
     }
     for body in &robot.carried {
         for placed in &body.shapes {
-            let [x, y, z] = placed.position_m;
             let rpy = placed.rpy_rad;
             let rotation = Rotation::from_euler(EulerRot::ZYX, rpy[2], rpy[1], rpy[0]);
             let (shape, rotation, half) = match placed.shape {
@@ -118,11 +111,12 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
                 ),
                 Shape::Sphere { radius_m } => (SharedShape::ball(radius_m), rotation, [radius_m; 3]),
             };
-            pieces.push((ArmPiece::new(&body.name, x, y, z, rotation, half), shape));
+            pieces.push(ArmPiece::new(&body.name, placed.position_m, rotation, half, shape));
         }
     }
-    if let (PayloadSpec::String { at, .. }, Some(string)) = (&scenario.spec.payload, scenario.pipe_string()?) {
-        let clamp = robot.body(at).expect("checked when the payload was resolved");
+    if let Some(held) = model.payload.string()
+        && let Some(clamp) = robot.body(&held.body)
+    {
         // The string's axis runs along the arm, midway between the jaws.
         let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
         let mean = |f: fn(&crate::robot::CarriedBody) -> f64, own: f64| {
@@ -130,15 +124,18 @@ pub fn shapes_of_robot(scenario: &Scenario) -> Result<Vec<(ArmPiece, SharedShape
         };
         let lateral = mean(|b| b.lateral_m, clamp.lateral_m);
         let normal = mean(|b| b.normal_offset_m, clamp.normal_offset_m);
-        let radius = 0.5 * string.pipe.outer_diameter_m;
-        let half_length = 0.5 * string.length_m;
+        let radius = 0.5 * held.pipe.pipe.outer_diameter_m;
+        let half_length = 0.5 * held.pipe.length_m;
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
-        pieces.push((
-            ArmPiece::new("string", clamp.station_m, lateral, normal, along_arm, [radius, half_length, radius]),
+        pieces.push(ArmPiece::new(
+            "string",
+            [clamp.station_m, lateral, normal],
+            along_arm,
+            [radius, half_length, radius],
             SharedShape::cylinder(half_length, radius),
         ));
     }
-    Ok(pieces)
+    pieces
 }
 
 /// World pose of a piece from the arm's state: the section at its station carries it rigidly.
@@ -155,4 +152,34 @@ pub fn pose_piece(piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m:
     );
     let rotation = Rotation::from_rotation_z(hub.angle_rad + slope) * piece.local_rotation;
     Pose::from_parts(translation, rotation)
+}
+
+/// The arm at one instant, as a contact source sees it.
+pub struct ArmView<'a> {
+    /// The arm's model.
+    pub arm: &'a ArmModel,
+    /// The hub's state.
+    pub hub: DriveState,
+    /// Elastic coordinates.
+    pub q: &'a DVector<f64>,
+    /// Their rates.
+    pub qd: &'a DVector<f64>,
+    /// The shapes riding on the arm.
+    pub pieces: &'a [ArmPiece],
+    /// The lift joint's pivot in the world, m.
+    pub pivot_m: [f64; 3],
+}
+
+impl ArmView<'_> {
+    /// World pose of a piece riding on the arm.
+    pub fn pose(&self, piece: &ArmPiece) -> Pose {
+        pose_piece(piece, &self.hub, self.q, self.pivot_m)
+    }
+
+    /// A bound on any arm point's speed: the hub's rotation at the tip (plus a metre) plus the
+    /// tip's elastic speed, m/s.
+    pub fn speed_bound_m_s(&self) -> f64 {
+        let [ru, rv, _] = self.arm.tip_rows();
+        self.hub.rate_rad_s.abs() * (self.arm.length_m() + 1.0) + ru.dot(self.qd).hypot(rv.dot(self.qd))
+    }
 }

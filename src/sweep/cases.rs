@@ -120,7 +120,7 @@ pub fn run_cases(
 
 /// `todo` ordered by the steps each case takes (its cost), most first; ties by index.
 fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
-    let steps = |i: usize| scenarios[i].duration_s() / scenarios[i].spec.time.step_s;
+    let steps = |i: usize| scenarios[i].model.duration_s() / scenarios[i].model.time.step_s;
     let mut queue = todo.to_vec();
     queue.sort_by(|&a, &b| steps(b).total_cmp(&steps(a)).then(a.cmp(&b)));
     queue
@@ -129,7 +129,7 @@ fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
 fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path) -> Result<(), SweepError> {
     let file =
         |summary, diverged| CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary, diverged };
-    let json = match run(scenario, None) {
+    let json = match run(&scenario.model, None) {
         Ok((summary, _)) => serde_json::to_string_pretty(&file(Some(&summary), None)),
         Err(SceneError::Diverged { t_s, what, advice }) => {
             serde_json::to_string_pretty(&file(None, Some(Diverged { t_s, what: &what, advice: &advice })))

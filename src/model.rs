@@ -1,0 +1,323 @@
+//! The machine and its scene, resolved: what a scenario file says, checked once and turned into
+//! the quantities the step loop needs (SI units, radians).
+//!
+//! Data flows one way: a scenario file ([`crate::scenario`]) is read, checked and resolved into a
+//! [`Model`]; [`crate::select`], [`crate::scene`], [`crate::run`] and [`crate::bench`] take the
+//! model, never the file. A model may also be built or edited in code (the bench varies its step,
+//! integrator and pad laws); it is then the caller's to keep within the ranges the scenario's
+//! checks enforce.
+//!
+//! The drive is a reference motion today, followed exactly by the hub; an actuator that tracks it
+//! belongs in [`Drive`]. The string is a lumped body today; its own dynamics belong in
+//! [`HeldString`].
+
+use serde::{Deserialize, Serialize};
+
+use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
+use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass};
+use crate::contact::ForceLaw;
+use crate::drive::MotionProfile;
+use crate::integrate::IntegratorKind;
+use crate::robot::{PipeString, Robot};
+
+/// A scene ready to simulate: the machine (robot, payload, drive), the dampeners it strikes, and
+/// how to simulate it.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Name used in reports and output files.
+    pub name: String,
+    /// The robot: lift joint, flexible arm, carried bodies.
+    pub robot: Robot,
+    /// What the gripper holds.
+    pub payload: Payload,
+    /// What moves the hub.
+    pub drive: Drive,
+    /// Rubber dampeners at the stops.
+    pub dampeners: Vec<Dampener>,
+    /// How contact forces are computed.
+    pub contact: ContactOptions,
+    /// The arm's fidelity; `None`: the cheapest the scene needs ([`crate::select`]).
+    pub fidelity: Option<Fidelity>,
+    /// Physical options of the scene.
+    pub physics: PhysicsOptions,
+    /// Time integrator of the arm.
+    pub integrator: IntegratorKind,
+    /// Time step and span.
+    pub time: TimeOptions,
+}
+
+impl Model {
+    /// The beam description of the arm: the robot's links plus the payload's lumped masses.
+    pub fn beam_spec(&self) -> Result<BeamSpec, BeamError> {
+        self.robot.beam_spec(&self.payload.masses())
+    }
+
+    /// Arm options: the robot's damping and hub inertia, the scene's physics.
+    pub fn arm_options(&self) -> ArmOptions {
+        ArmOptions {
+            damping_ratios: self.robot.arm.damping_ratios.clone(),
+            geometric_stiffening: self.physics.geometric_stiffening,
+            gravity_m_s2: self.physics.gravity_m_s2,
+            hub_inertia_kg_m2: self.robot.arm.hub_inertia_kg_m2,
+        }
+    }
+
+    /// The arm model at `fidelity`.
+    pub fn arm_model(&self, fidelity: Fidelity) -> Result<ArmModel, ArmError> {
+        ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm_options())
+    }
+
+    /// How the arm's hub moves.
+    pub fn hub_drive(&self) -> HubDrive {
+        HubDrive::Prescribed(self.drive.motion.clone())
+    }
+
+    /// Time the drive ends, s.
+    pub fn drive_end_s(&self) -> f64 {
+        self.drive.motion.duration_s()
+    }
+
+    /// Total simulated time: drive plus settling, s.
+    pub fn duration_s(&self) -> f64 {
+        self.drive_end_s() + self.time.settle_s
+    }
+}
+
+/// What moves the hub: the reference motion, followed exactly (an ideal drive).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drive {
+    /// The hub's motion, rad.
+    pub motion: MotionProfile,
+}
+
+/// What the gripper holds.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub enum Payload {
+    /// Nothing.
+    #[default]
+    None,
+    /// A lumped mass on the arm (the seed's lab blocks).
+    Lumped(ConcentratedMass),
+    /// A pipe string held by the gripper.
+    String(HeldString),
+}
+
+impl Payload {
+    /// The payload as concentrated masses on the arm.
+    pub fn masses(&self) -> Vec<ConcentratedMass> {
+        match self {
+            Payload::None => Vec::new(),
+            Payload::Lumped(mass) => vec![mass.clone()],
+            Payload::String(held) => vec![held.lumped_mass()],
+        }
+    }
+
+    /// Total mass, kg.
+    pub fn mass_kg(&self) -> f64 {
+        match self {
+            Payload::None => 0.0,
+            Payload::Lumped(mass) => mass.mass_kg,
+            Payload::String(held) => held.pipe.mass_kg(),
+        }
+    }
+
+    /// The held string, if the payload is one.
+    pub fn string(&self) -> Option<&HeldString> {
+        match self {
+            Payload::String(held) => Some(held),
+            _ => None,
+        }
+    }
+
+    /// The held string, mutable, if the payload is one.
+    pub fn string_mut(&mut self) -> Option<&mut HeldString> {
+        match self {
+            Payload::String(held) => Some(held),
+            _ => None,
+        }
+    }
+}
+
+/// A pipe string in the gripper.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeldString {
+    /// The string, from the pipe catalogue.
+    pub pipe: PipeString,
+    /// Name of the carried body that grips it.
+    pub body: String,
+    /// Arm station of that body, where the string's centre is held, m.
+    pub station_m: f64,
+    /// How the jaws hold it.
+    pub clamp: Clamp,
+    /// The jaws' friction, used when `clamp` is [`Clamp::Friction`].
+    pub friction: FrictionClamp,
+}
+
+impl HeldString {
+    /// The string as one mass at the gripper's station.
+    pub fn lumped_mass(&self) -> ConcentratedMass {
+        ConcentratedMass {
+            name: format!("string {}", self.pipe.pipe.size),
+            position_m: self.station_m,
+            mass_kg: self.pipe.mass_kg(),
+            rotary_inertia_kg_m2: self.pipe.transverse_inertia_kg_m2(),
+        }
+    }
+
+    /// The friction clamp's parameters, if the string is held by one.
+    pub fn friction_clamp(&self) -> Option<FrictionClamp> {
+        (self.clamp == Clamp::Friction).then_some(self.friction)
+    }
+}
+
+/// How the gripper holds a string.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Clamp {
+    /// Welded to the gripper: string and jaws are lumped into the arm's masses, their shapes
+    /// follow the gripper.
+    #[default]
+    Rigid,
+    /// Held by friction: the jaws close on force-limited prismatic motors and squeeze a dynamic
+    /// string in rapier; it slips when its load exceeds μ times the squeeze of both jaws.
+    Friction,
+}
+
+/// A friction clamp's parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionClamp {
+    /// Coulomb coefficient between jaws and string.
+    pub friction_coefficient: f64,
+    /// Squeeze per jaw, N (`None`: the jaw joint's URDF effort).
+    pub squeeze_n: Option<f64>,
+}
+
+/// Which arm face touches a pad, named as seen with the arm horizontal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Face {
+    /// The +y face: the side the arm moves toward as the lift angle grows.
+    Upper,
+    /// The −y face.
+    Lower,
+}
+
+impl Face {
+    /// +1 for the upper face, −1 for the lower: the sign of the face's body-frame y.
+    pub fn sign(self) -> f64 {
+        match self {
+            Face::Upper => 1.0,
+            Face::Lower => -1.0,
+        }
+    }
+}
+
+/// A rubber pad placed against the arm at a stop.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dampener {
+    /// Its name (the contact pair is reported as `arm–<name>`).
+    pub name: String,
+    /// Lift angle of the stop the pad is set against, rad.
+    pub angle_rad: f64,
+    /// Arm station the pad's centre faces, m.
+    pub station_m: f64,
+    /// Arm face it touches.
+    pub face: Face,
+    /// Clearance between that face and the pad with the undeformed arm at the stop, m.
+    pub gap_m: f64,
+    /// Pad thickness (normal to the face), m.
+    pub thickness_m: f64,
+    /// Pad extent along the arm, m.
+    pub length_m: f64,
+    /// Pad extent across the lift plane, m.
+    pub width_m: f64,
+    /// Force law of the rubber.
+    pub law: ForceLaw,
+}
+
+/// How contact forces are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactOptions {
+    /// `compliant` (the pad's force law, implicit in the arm step) or `rapier`.
+    #[serde(default)]
+    pub method: ContactMethod,
+    /// Mass of the pad body for the `rapier` method, kg.
+    #[serde(default = "default_pad_mass")]
+    pub pad_mass_kg: f64,
+}
+
+fn default_pad_mass() -> f64 {
+    1.0
+}
+
+impl Default for ContactOptions {
+    fn default() -> Self {
+        ContactOptions { method: ContactMethod::default(), pad_mass_kg: default_pad_mass() }
+    }
+}
+
+/// How contact forces are computed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactMethod {
+    /// The pad's force law, evaluated inside the implicit arm step on the contact geometry that
+    /// parry finds between the pad and the arm's shapes.
+    #[default]
+    Compliant,
+    /// rapier's constraint solver against a pad body on a linear spring; the contact impulse / dt
+    /// is fed back to the arm.
+    Rapier,
+}
+
+impl ContactMethod {
+    /// The method's name as a scenario writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactMethod::Compliant => "compliant",
+            ContactMethod::Rapier => "rapier",
+        }
+    }
+}
+
+/// Physical options of the arm model that belong to the scene, not the robot.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct PhysicsOptions {
+    /// Geometric stiffening from centrifugal and gravity axial load (default on).
+    pub geometric_stiffening: bool,
+    /// Gravity, m/s².
+    pub gravity_m_s2: f64,
+}
+
+impl Default for PhysicsOptions {
+    fn default() -> Self {
+        PhysicsOptions { geometric_stiffening: true, gravity_m_s2: STANDARD_GRAVITY_M_S2 }
+    }
+}
+
+/// Local error per controlled step allowed by default, m of tip displacement (chosen from the
+/// errors measured against the converged reference, docs/performance.md).
+pub const DEFAULT_TOLERANCE_M: f64 = 1e-6;
+
+/// Time step and span.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeOptions {
+    /// Step around contact (and everywhere without `free_step_s`), s.
+    pub step_s: f64,
+    /// Longest step while no pad is within reach of the arm, s (default: `step_s`, fixed steps).
+    /// In free motion the step is then controlled by the implicit integrator's local error
+    /// estimate (between `step_s` and this); the scene predicts the approach from each pad's
+    /// clearance and the arm's speed and falls back to `step_s` before a contact can begin.
+    /// `compliant` contact with a rigid clamp and an implicit integrator only (the `rapier` pad
+    /// body and the friction clamp keep `step_s`; the explicit methods estimate no error).
+    #[serde(default)]
+    pub free_step_s: Option<f64>,
+    /// Local error allowed per controlled step, as displacement of the arm's tip, m (default
+    /// [`DEFAULT_TOLERANCE_M`]; used with `free_step_s`).
+    #[serde(default)]
+    pub tolerance_m: Option<f64>,
+    /// Time simulated after the drive ends, s.
+    pub settle_s: f64,
+}

@@ -1,0 +1,63 @@
+//! The one interface between the arm's step and whatever it touches.
+//!
+//! A [`ContactSource`] is anything that puts loads on the arm: pads found by a contact query
+//! (`compliant`), pads that are rapier bodies (`rapier`), a friction clamp. The scene's step calls
+//! every source in the same named stages, in the spirit of MuJoCo's forward pass:
+//!
+//! 1. [`pose`](ContactSource::pose) its shapes from the arm's state at the start of the step;
+//! 2. [`add_loads`](ContactSource::add_loads): forces its own bodies put on the arm, held over the
+//!    step (generalized forces; staggered by one step);
+//! 3. [`find_contacts`](ContactSource::find_contacts): point contacts whose force law the implicit
+//!    arm step evaluates on its own configuration (not staggered);
+//! 4. the arm advances;
+//! 5. [`advance`](ContactSource::advance) its own bodies to the arm's new pose;
+//! 6. [`measure`](ContactSource::measure) its forces at the end of the step.
+//!
+//! A new source (more pads, rig structure, the string) implements the trait and is added to the
+//! scene's list; the step does not change.
+
+use std::any::Any;
+
+use super::geometry::ArmView;
+use super::pads::Pad;
+use crate::arm::{ArmContact, GeneralizedLoad};
+
+/// Something that puts loads on the arm, called by the scene's step in stages (module doc).
+/// Every stage but [`measure`](Self::measure) does nothing unless the source needs it.
+pub trait ContactSource {
+    /// Stage 1: pose the source's shapes from the arm's state at the start of the step.
+    fn pose(&mut self, _arm: &ArmView) {}
+
+    /// Stage 2: add the loads the source's own bodies put on the arm over the coming step.
+    fn add_loads(&self, _arm: &ArmView, _load: &mut GeneralizedLoad) {}
+
+    /// Stage 3: append the point contacts the implicit arm step of `h_s` evaluates itself.
+    fn find_contacts(&mut self, _arm: &ArmView, _h_s: f64, _contacts: &mut Vec<ArmContact>) {}
+
+    /// Stage 5: advance the source's own bodies over `h_s` to the arm's new pose.
+    fn advance(&mut self, _arm: &ArmView, _h_s: f64) {}
+
+    /// Stage 6: measure the forces at the end of the step; `contacts` are the ones this source
+    /// appended in stage 3, evaluated by the step.
+    fn measure(&mut self, arm: &ArmView, contacts: &[ArmContact]);
+
+    /// The pads this source holds, with their forces at the end of the last step.
+    fn pads(&self) -> &[Pad] {
+        &[]
+    }
+
+    /// Whether the next step may be `h_s` long under error control: nothing of this source can
+    /// begin or change within it.
+    fn allows_free_step(&self, arm: &ArmView, h_s: f64) -> bool;
+
+    /// What makes this source's state meaningless, if anything (checked after every step).
+    fn fault(&self) -> Option<String>;
+
+    /// Advice when a run diverges with this source in it, if the source is the likely cause.
+    fn divergence_advice(&self, _step_s: f64) -> Option<String> {
+        None
+    }
+
+    /// The source as `Any`, for callers that need its concrete type (the friction clamp's slip).
+    fn as_any(&self) -> &dyn Any;
+}
