@@ -225,7 +225,8 @@ impl Scenario {
         let check = Check { path };
         let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
         let payload = check.payload(&spec.payload, &robot)?;
-        let dampeners: Result<Vec<_>, _> = spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
+        let dampeners: Result<Vec<_>, _> =
+            spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
         let model = Model {
             name: spec.name.clone(),
             robot,
@@ -260,10 +261,7 @@ impl Check<'_> {
 
     /// The ranges serde cannot check, on the resolved model.
     fn model(&self, model: &Model) -> Result<(), ScenarioError> {
-        let beam = model
-            .beam_spec()
-            .and_then(BeamModel::new)
-            .map_err(|e| self.invalid("payload", e.to_string()))?;
+        let beam = model.beam_spec().and_then(BeamModel::new).map_err(|e| self.invalid("payload", e.to_string()))?;
         if let Some(Fidelity::Modal { modes }) = model.fidelity
             && !(1..=beam.dofs()).contains(&modes)
         {
@@ -374,7 +372,10 @@ impl Check<'_> {
         if jaws != 2 {
             return Err(self.invalid(
                 "payload.clamp",
-                format!("a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}", robot.name),
+                format!(
+                    "a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}",
+                    robot.name
+                ),
             ));
         }
         if robot.body(&held.body).is_some_and(|b| b.shapes.is_empty()) {

@@ -12,8 +12,8 @@ use pipearm::arm::Fidelity;
 use pipearm::bench::stability::{FLOOR_OMEGA_DT, Limit, arm_is_stable, arm_limit, undamped_arm};
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
-use pipearm::run::run;
 use pipearm::model::{Clamp, ContactMethod, Model};
+use pipearm::run::run;
 use pipearm::scenario::{DriveSpec, Scenario};
 use pipearm::scene::SceneError;
 
@@ -141,7 +141,6 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
     s.drive.motion = DriveSpec::Hold { angle_deg: 0.0 }.motion().unwrap();
     s.time.settle_s = 2.0;
     run(&s, eight).expect("the advised step is stable");
-    let mut s = s;
     s.integrator = IntegratorKind::ExplicitEuler;
     let Err(SceneError::Diverged { advice, .. }) = run(&s, eight) else { panic!("explicit Euler must diverge") };
     assert!(advice.contains("generalized-alpha"), "{advice}");

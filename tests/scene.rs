@@ -9,8 +9,8 @@ use pipearm::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
 use pipearm::beam::BeamModel;
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
-use pipearm::run::run;
 use pipearm::model::{Clamp, ContactMethod, Model};
+use pipearm::run::run;
 use pipearm::scenario::{DriveSpec, Scenario};
 use pipearm::scene::Scene;
 

@@ -21,8 +21,8 @@ pub use report::{points_csv, report_markdown, stability_csv};
 use crate::arm::Fidelity;
 use crate::contact::ForceLaw;
 use crate::integrate::IntegratorKind;
-use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::model::{Clamp, ContactMethod, DEFAULT_TOLERANCE_M, Model};
+use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::scene::{Scene, SceneError};
 
 /// A run of the bench that failed for a reason other than divergence.
@@ -351,11 +351,7 @@ pub fn linear_laws(model: &Model, force_n: f64) -> Result<Vec<ForceLaw>, SceneEr
 }
 
 /// Runs a variant `repeats` times; the first run's results, the median wall time.
-pub fn run_timed(
-    model: &Model,
-    fidelity: Fidelity,
-    repeats: usize,
-) -> Result<(RunSummary, Series, f64), SceneError> {
+pub fn run_timed(model: &Model, fidelity: Fidelity, repeats: usize) -> Result<(RunSummary, Series, f64), SceneError> {
     let options = RunOptions { fidelity: Some(fidelity), ..RunOptions::default() };
     let mut walls = Vec::with_capacity(repeats.max(1));
     let mut first = None;
@@ -446,10 +442,8 @@ pub fn reference(
     let mut finest = None;
     for factor in [1.0, 2.0, 4.0] {
         let variant = at(factor * h_ref, None);
-        let (summary, series) = run_with(
-            &variant.model(base, linear),
-            &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() },
-        )?;
+        let (summary, series) =
+            run_with(&variant.model(base, linear), &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() })?;
         steps.push((variant.step_s, peak_force_n(&summary), summary.residual.frequency_hz));
         finest.get_or_insert((variant, summary, series));
     }

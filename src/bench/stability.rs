@@ -17,9 +17,9 @@ use crate::beam::BeamModel;
 use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
+use crate::model::{Clamp, Model};
 use crate::robot::{PipeString, pipe_size};
 use crate::run::{RunOptions, run_with};
-use crate::model::{Clamp, Model};
 use crate::scene::{Scene, SceneError};
 
 /// Smallest ω·dt tried: below it a method that is still unstable is called unstable at any step.

@@ -94,7 +94,9 @@ impl FrictionGrip {
         );
         let string_pose = palm_pose * Pose::from_parts(string_centre, string_piece.local_rotation);
         let string_body = world.insert_body(RigidBodyBuilder::dynamic().pose(string_pose).can_sleep(false));
-        let collider = ColliderBuilder::new(string_piece.shape.clone()).mass(string.mass_kg()).friction(clamp.friction_coefficient);
+        let collider = ColliderBuilder::new(string_piece.shape.clone())
+            .mass(string.mass_kg())
+            .friction(clamp.friction_coefficient);
         world.insert_collider(collider, Some(string_body));
         let radius = 0.5 * string.pipe.outer_diameter_m;
         let mut squeeze_n = f64::INFINITY;

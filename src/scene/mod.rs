@@ -29,14 +29,14 @@ use crate::arm::{ArmError, ArmModel, ArmSimulation, GeneralizedLoad};
 use crate::drive::DriveState;
 use crate::integrate::StepControl;
 use crate::model::{ContactMethod, Model};
-pub use clamp::FrictionGrip;
 use clamp::ClampPlacement;
+pub use clamp::FrictionGrip;
 use compliant::CompliantPads;
 pub use geometry::{ArmPiece, ArmView};
 use geometry::{pose_piece, shapes_of_robot};
 pub use pads::Pad;
-pub use rapier_pads::{UnsupportedPad, rapier_pad_spring};
 use rapier_pads::RapierPads;
+pub use rapier_pads::{UnsupportedPad, rapier_pad_spring};
 pub use source::ContactSource;
 
 /// The arm, the shapes riding on it and the sources of its contact loads.
@@ -299,9 +299,8 @@ impl Scene {
 fn mark_pieces_near_pads(pieces: &mut [ArmPiece], pads: &[Pad]) {
     for piece in pieces {
         let reach = piece.half_extents_m.iter().fold(0.0_f64, |a, b| a.max(*b)) + 0.5;
-        piece.near_pad = pads
-            .iter()
-            .any(|p| (p.dampener.station_m - piece.station_m).abs() <= 0.5 * p.dampener.length_m + reach);
+        piece.near_pad =
+            pads.iter().any(|p| (p.dampener.station_m - piece.station_m).abs() <= 0.5 * p.dampener.length_m + reach);
     }
 }
 

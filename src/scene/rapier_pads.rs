@@ -102,12 +102,8 @@ impl RapierPads {
             .collect();
         let mut bodies = Vec::with_capacity(pads.len());
         for pad in &pads {
-            let (stiffness_n_m, damping_n_s_m) =
-                rapier_pad_spring(&pad.dampener).map_err(|(key, message)| UnsupportedPad {
-                    name: pad.dampener.name.clone(),
-                    key,
-                    message,
-                })?;
+            let (stiffness_n_m, damping_n_s_m) = rapier_pad_spring(&pad.dampener)
+                .map_err(|(key, message)| UnsupportedPad { name: pad.dampener.name.clone(), key, message })?;
             let t = pad.pose.translation;
             let spring = PadSpring { rest_m: [t.x, t.y, t.z], stiffness_n_m, damping_n_s_m };
             // The pad slides along its normal only.
