@@ -8,7 +8,7 @@ use plotters::prelude::*;
 
 use super::SweepError;
 use super::plan::Plan;
-use super::table::Row;
+use super::row::{Row, cell};
 use crate::arm::STANDARD_GRAVITY_M_S2;
 
 /// One curve: its label and its (weight N, peak force N) points, by weight.
@@ -55,7 +55,7 @@ pub fn force_vs_weight(path: &Path, plan: &Plan, rows: &[Row]) -> Result<(), Swe
     let (_, y_hi) = padded(points().map(|p| p.1), true);
     let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
     // The scenario's name from the results, not the plan's path: shards may name the file differently.
-    let name = rows.first().and_then(|r| r.get("summary.scenario")).map(|s| s.cell()).unwrap_or_default();
+    let name = rows.first().and_then(|r| r.get("summary.scenario")).map(cell).unwrap_or_default();
     crate::bench::register_font();
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;

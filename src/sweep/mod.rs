@@ -5,14 +5,14 @@
 //! The flow: `--vary` arguments ([`vary`]) → a checked [`plan::Plan`] (every case's scenario
 //! built and validated before anything is written) → the cases of one [`shard`] run and stored
 //! one file each ([`cases`], skipping those already current) → [`merge`] reads the plan and
-//! every case file and writes the table ([`table`], exact flattening by [`flat`]) and the
-//! chart ([`chart`]). Results hold nothing thread- or time-dependent, so a sharded sweep merges
+//! every case file ([`row`]: its scalars by dotted path) and writes the table ([`table`]) and
+//! the chart ([`chart`]). Results hold nothing thread- or time-dependent, so a sharded sweep merges
 //! to the same bytes as one run in one process.
 
 pub mod cases;
 pub mod chart;
-pub mod flat;
 pub mod plan;
+pub mod row;
 pub mod shard;
 pub mod table;
 pub mod vary;

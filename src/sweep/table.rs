@@ -7,10 +7,11 @@ use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 use rayon::prelude::*;
+use serde_json::Value;
 
 use super::cases::case_path;
-use super::flat::{Scalar, flatten};
 use super::plan::{Plan, read_plan};
+use super::row::{Row, cell};
 use super::vary::show;
 use super::{SweepError, chart, io_error, write_atomic};
 
@@ -28,21 +29,6 @@ pub struct Merged {
     pub json: PathBuf,
     /// `force_vs_weight.svg`.
     pub chart: PathBuf,
-}
-
-/// One case read back: its file's text and its scalars.
-pub struct Row {
-    /// The case file, verbatim.
-    pub text: String,
-    /// Its scalars by dotted path (`values.<key>`, `summary.<...>`).
-    pub scalars: Vec<(String, Scalar)>,
-}
-
-impl Row {
-    /// The scalar at `path`.
-    pub fn get(&self, path: &str) -> Option<&Scalar> {
-        self.scalars.iter().find(|(k, _)| k == path).map(|(_, v)| v)
-    }
 }
 
 /// Reads `DIR/plan.json` and every case file and writes the results; fails naming the cases
@@ -81,9 +67,8 @@ fn read_rows(plan: &Plan, dir: &Path) -> Result<Vec<Row>, SweepError> {
         .map(|c| {
             let path = case_path(dir, c);
             let text = std::fs::read_to_string(&path).map_err(io_error(&path))?;
-            let scalars = flatten(&text, &TABLE_SKIPS)
-                .ok_or_else(|| SweepError::Format { path: path.clone(), message: "not JSON".into() })?;
-            Ok(Row { text, scalars })
+            Row::read(text, &TABLE_SKIPS)
+                .map_err(|e| SweepError::Format { path: path.clone(), message: format!("not JSON: {e}") })
         })
         .collect()
 }
@@ -113,18 +98,18 @@ fn csv(plan: &Plan, rows: &[Row]) -> String {
     let header = ["index", "hash"].into_iter().chain(keys.iter().copied()).chain(["outcome"]);
     let mut out = line(header.chain(summary_columns.iter().copied()));
     for (row, case) in rows.iter().zip(&plan.cases) {
-        let by_path: HashMap<&str, &Scalar> = row.scalars.iter().map(|(k, v)| (k.as_str(), v)).collect();
+        let by_path: HashMap<&str, &Value> = row.scalars.iter().map(|(k, v)| (k.as_str(), v)).collect();
         let get = |path: &str| by_path.get(path).copied();
-        let cell = |path: String| get(&path).map(Scalar::cell).unwrap_or_default();
+        let cell_at = |path: String| get(&path).map(cell).unwrap_or_default();
         // An inline table or array value has no single scalar: the plan shows it as TOML.
-        let value = |k: &&str| get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), Scalar::cell);
+        let value = |k: &&str| get(&format!("values.{k}")).map_or_else(|| show(&case.values[*k]), cell);
         // `ran`, or where the guard stopped the run (its reason and advice are in the JSON).
-        let outcome = get("diverged.t_s").map_or_else(|| "ran".to_string(), |t| format!("diverged at {} s", t.cell()));
-        let cells: Vec<String> = [cell("index".into()), cell("hash".into())]
+        let outcome = get("diverged.t_s").map_or_else(|| "ran".to_string(), |t| format!("diverged at {} s", cell(t)));
+        let cells: Vec<String> = [cell_at("index".into()), cell_at("hash".into())]
             .into_iter()
             .chain(keys.iter().map(value))
             .chain([outcome])
-            .chain(summary_columns.iter().map(|c| cell(format!("summary.{c}"))))
+            .chain(summary_columns.iter().map(|c| cell_at(format!("summary.{c}"))))
             .collect();
         out += &line(cells.iter().map(String::as_str));
     }
