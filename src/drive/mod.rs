@@ -1,0 +1,61 @@
+//! Prescribed hub motion of an arm pivoting at its base.
+//!
+//! A [`MotionProfile`] moves the hub angle from a start angle `A` to an end
+//! angle `B` in a duration `T`; [`MotionProfile::sample`] returns the exact
+//! angle, rate, acceleration and jerk at any time.
+//!
+//! # Conventions
+//!
+//! * SI units throughout: angles in rad, rates in rad/s, accelerations in
+//!   rad/s², jerks in rad/s³, times in s.
+//! * The motion starts at `t = 0`. Before `t = 0` every profile holds at `A`
+//!   at rest; from `t = T` on it holds at `B` at rest. The exception is the
+//!   spin-up profile, which keeps its final constant rate forever after its
+//!   ramp time.
+//! * Where a quantity jumps, `sample` returns the value just *after* the
+//!   instant (right-continuous).
+//! * Moving down (`B < A`) is the exact mirror image of moving up.
+//!
+//! # Continuity per profile
+//!
+//! | profile       | continuous                    | discontinuous                                   |
+//! |---------------|-------------------------------|-------------------------------------------------|
+//! | `uniform`     | angle                         | rate jumps at 0 and `T` (see [`MotionProfile::rate_jumps`]); the matching acceleration impulses are not reported (accel 0) |
+//! | `trapezoidal` | angle, rate                   | accel jumps at 0, `t_a`, `T - t_a`, `T`; jerk is impulsive there and reported as 0 |
+//! | `s-curve`     | angle, rate, accel            | jerk is piecewise constant and jumps at the 8 segment boundaries |
+//! | `spin-up`     | angle, rate, accel, jerk      | snap (d jerk/dt) jumps at 0 and the ramp time   |
+//! | `hold`        | everything (constant)         | nothing                                         |
+//!
+//! # Implementation
+//!
+//! The symmetric profiles (uniform, trapezoidal, s-curve) are stored as
+//! constant-jerk segments covering the first half `[0, T/2]`, with the state
+//! at each segment start precomputed at construction. The second half follows
+//! from the point symmetry `θ(t) = A + B − θ(T − t)`, so `θ(T) = B` holds
+//! exactly (to rounding). Sampling is a closed-form cubic per segment; there is
+//! no numerical integration.
+//!
+//! # Layout
+//!
+//! * `profile`: the profile kinds and their constructors.
+//! * `trapezoid`, `s_curve`: each limited profile's timing, solved from its limit.
+//! * `state`: the kinematic state and constant-jerk motion of it.
+//! * `sample`: the state of a profile at a time.
+//! * `breakpoints`: where a profile is not smooth.
+//! * `validate`: the checks on parameters and the error they raise.
+
+mod breakpoints;
+mod profile;
+mod s_curve;
+mod sample;
+mod state;
+#[cfg(test)]
+mod test_support;
+mod trapezoid;
+mod validate;
+
+pub use profile::MotionProfile;
+pub use s_curve::SCurveLimit;
+pub use state::DriveState;
+pub use trapezoid::TrapezoidLimit;
+pub use validate::DriveError;
