@@ -14,6 +14,7 @@ pub mod beam;
 pub mod bench;
 pub mod contact;
 pub mod drive;
+pub mod fit;
 pub mod guard;
 pub mod integrate;
 pub mod model;

@@ -69,6 +69,9 @@ pub struct ScenarioSpec {
     /// How contact forces are computed.
     #[serde(default)]
     pub contact: ContactOptions,
+    /// Overrides of the robot's arm (default: the URDF's).
+    #[serde(default)]
+    pub arm: ArmOverrides,
     /// Model fidelity (default `auto`: the cheapest the scene needs, [`crate::select`]).
     #[serde(default)]
     pub model: ModelSpec,
@@ -80,6 +83,15 @@ pub struct ScenarioSpec {
     pub integrator: IntegratorKind,
     /// Time step and span.
     pub time: TimeOptions,
+}
+
+/// What a scenario may change of the robot's arm.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArmOverrides {
+    /// Modal damping ratio ζ per clamped mode, lowest first (the last applies to every higher
+    /// mode); replaces the URDF's `damping_ratios`.
+    pub damping_ratios: Option<Vec<f64>>,
 }
 
 /// The model a scenario asks for.
@@ -221,8 +233,11 @@ impl Scenario {
 
     /// Checks and resolves a spec as if read from `path`, with its robot already read by
     /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
-    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
+    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
         let check = Check { path };
+        if let Some(ratios) = &spec.arm.damping_ratios {
+            robot.arm.damping_ratios = check.damping_ratios(ratios)?;
+        }
         let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
         let payload = check.payload(&spec.payload, &robot)?;
         let dampeners: Result<Vec<_>, _> =
@@ -284,6 +299,19 @@ impl Check<'_> {
             self.clamp(held, &model.robot)?;
         }
         Ok(())
+    }
+
+    fn damping_ratios(&self, ratios: &[f64]) -> Result<Vec<f64>, ScenarioError> {
+        if ratios.is_empty() {
+            return Err(self.invalid("arm.damping_ratios", "empty: allowed one or more ratios 0 <= ratio < 2"));
+        }
+        match ratios.iter().position(|z| !(0.0..2.0).contains(z)) {
+            Some(i) => Err(self.invalid(
+                &format!("arm.damping_ratios[{i}]"),
+                format!("{} is outside 0 <= ratio < 2", ratios[i]),
+            )),
+            None => Ok(ratios.to_vec()),
+        }
     }
 
     fn time(&self, model: &Model) -> Result<(), ScenarioError> {

@@ -125,6 +125,8 @@ fn scenario_errors_name_file_key_and_range() {
     assert!(m.contains("dampeners[0].law.restitution") && m.contains("0 < e <= 1"), "{m}");
     let m = load_error("pad-gap", |t| t.replace("gap_m = 0.0002", "gap_m = -0.001"));
     assert!(m.contains("dampeners[0].gap_m"), "{m}");
+    let m = load_error("damping", |t| format!("{t}\n[arm]\ndamping_ratios = [0.01, -0.1]\n"));
+    assert!(m.contains("arm.damping_ratios[1]") && m.contains("0 <= ratio < 2"), "{m}");
     let m = load_error("law-kind", |t| t.replace("kind = \"hunt-crossley\"", "kind = \"hertz\""));
     assert!(m.contains("hertz") && m.contains("hunt-crossley"), "{m}");
     let m = load_error("robot-missing", |t| t.replace("pipe_arm.urdf", "no_such_arm.urdf"));

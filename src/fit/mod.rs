@@ -1,0 +1,362 @@
+//! Least-squares identification of scenario parameters from measured signals (`pipearm fit`).
+//!
+//! Each named scenario key (the arm's modal damping ratios, a pad law's stiffness, exponent,
+//! restitution or damping, the string's length) is a parameter within bounds. The residuals
+//! are the simulated signals minus the measured ones at the measured times, each signal divided
+//! by its measured peak so that signals of different units weigh alike. The measured signals are
+//! first aligned in time with the simulation at the scenario's own values (the shift of least
+//! squared difference, [`alignment_shift`]), and that shift is held while the parameters move.
+//!
+//! The uncertainty: the standard error of each parameter from the Jacobian at the solution,
+//! s² (JᵀJ)⁻¹ with s² the residuals' variance, both taken over the residuals' effective number of
+//! independent samples (their lag-one autocorrelation accounted for, [`lm`]); the 95 % interval is
+//! ± 1.96 standard errors. It is the uncertainty of the fit to these signals under this model, not
+//! of the model's form.
+
+pub mod lm;
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::arm::Fidelity;
+use crate::robot::Robot;
+use crate::run::{RunSummary, Series, run};
+use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
+use crate::scene::SceneError;
+use crate::sweep::plan::set_key;
+
+/// Errors of a fit; each names what it concerns.
+#[derive(Debug, thiserror::Error)]
+pub enum FitError {
+    /// A key that cannot be fitted, or is not in the scenario.
+    #[error("--params {key}: {message}")]
+    Key { key: String, message: String },
+    /// The scenario with the parameters set.
+    #[error(transparent)]
+    Scenario(#[from] Box<ScenarioError>),
+    /// A run.
+    #[error("a run at {values}: {source}")]
+    Run { values: String, source: SceneError },
+    /// A measured signal the simulation does not produce.
+    #[error("measured column `{0}`: the run has no such signal")]
+    Signal(String),
+}
+
+/// A parameter to fit: a scenario key and its bounds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Parameter {
+    /// Dotted scenario key, e.g. `arm.damping_ratios.0`, `dampeners.0.law.stiffness`.
+    pub key: String,
+    /// Its value in the scenario.
+    pub initial: f64,
+    /// Lower and upper bound.
+    pub bounds: (f64, f64),
+}
+
+/// The allowed keys and their bounds, given the scenario's value: (key pattern, bounds).
+const FITTABLE: &str = "arm.damping_ratios.N, dampeners.N.law.stiffness, dampeners.N.law.stiffness_n_m, \
+                        dampeners.N.law.damping_n_s_m, dampeners.N.law.exponent, dampeners.N.law.restitution, \
+                        payload.length_m";
+
+/// Bounds of a fittable key around its scenario value, or why it is not fittable.
+fn bounds_of(key: &str, initial: f64) -> Result<(f64, f64), String> {
+    let last = key.rsplit('.').next().unwrap_or(key);
+    let decade = |f: f64| (initial / f, initial * f);
+    let bounds = if key.starts_with("arm.damping_ratios.") {
+        (1e-4, 0.5)
+    } else if key.starts_with("dampeners.") {
+        match last {
+            "stiffness" | "stiffness_n_m" | "damping_n_s_m" => decade(100.0),
+            "exponent" => (1.0, 3.0),
+            "restitution" => (0.05, 1.0),
+            _ => return Err(format!("not fittable: allowed {FITTABLE}")),
+        }
+    } else if key == "payload.length_m" {
+        decade(3.0)
+    } else {
+        return Err(format!("not fittable: allowed {FITTABLE}"));
+    };
+    if !(initial.is_finite() && initial > 0.0) {
+        return Err(format!("its value {initial} must be > 0 to be fitted"));
+    }
+    Ok((bounds.0.min(initial), bounds.1.max(initial)))
+}
+
+/// A measured signal.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Signal {
+    /// The simulated signal it is compared with (a name [`simulated`] knows).
+    pub name: String,
+    /// Times, s, increasing.
+    pub t_s: Vec<f64>,
+    /// Values, in the signal's unit.
+    pub values: Vec<f64>,
+}
+
+/// The simulated signal `name` of a run at each step, if the run has it: `tip_deflection`
+/// (transverse, in the hub frame, m), `contact_force_arm–<pad>` (N), `hub_angle` (rad),
+/// `drive_torque` (N·m).
+pub fn simulated(name: &str, summary: &RunSummary, series: &Series) -> Option<Vec<f64>> {
+    match name {
+        "tip_deflection" => Some(series.tip_deflection_m.iter().map(|d| d[1]).collect()),
+        "hub_angle" => Some(series.hub_angle_rad.clone()),
+        "drive_torque" => Some(series.drive_torque_n_m.clone()),
+        _ => {
+            let pair = name.strip_prefix("contact_force_")?;
+            let i = summary.pairs.iter().position(|p| p.pair == pair)?;
+            series.pad_force_n.get(i).cloned()
+        }
+    }
+}
+
+/// How the fit runs the scenario: its own fidelity and step unless set.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct RunSettings {
+    /// The arm's fidelity (`None`: the scenario's).
+    pub fidelity: Option<Fidelity>,
+    /// The time step, s (`None`: the scenario's). Measured signals are compared with the run
+    /// interpolated linearly between its steps: a step well below the measured signal's
+    /// shortest feature (an impact's duration / 20) keeps that interpolation out of the fit.
+    pub step_s: Option<f64>,
+}
+
+/// A scenario and the parameters to fit in it.
+pub struct Problem {
+    path: PathBuf,
+    document: toml::Value,
+    robot: Robot,
+    settings: RunSettings,
+    /// The parameters, in `--params` order.
+    pub parameters: Vec<Parameter>,
+}
+
+impl Problem {
+    /// The scenario at `path` with `keys` to fit, run with `settings`.
+    pub fn new(path: &Path, keys: &[String], settings: RunSettings) -> Result<Self, FitError> {
+        let scenario = Scenario::load(path).map_err(Box::new)?;
+        let mut document = toml::Value::try_from(&scenario.spec).map_err(|e| {
+            Box::new(ScenarioError::Parse { path: path.into(), message: format!("canonical form: {e}") })
+        })?;
+        // The damping ratios live in the URDF unless the scenario overrides them: make the
+        // override explicit, so that its entries can be set.
+        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) && scenario.spec.arm.damping_ratios.is_none() {
+            let ratios = toml::Value::try_from(&scenario.model.robot.arm.damping_ratios).expect("floats");
+            let arm = toml::Value::Table([("damping_ratios".to_string(), ratios)].into_iter().collect());
+            set_key(&mut document, "arm", arm).map_err(|message| FitError::Key { key: "arm".into(), message })?;
+        }
+        let parameters = keys
+            .iter()
+            .map(|key| {
+                let initial = get_number(&document, key)
+                    .ok_or_else(|| FitError::Key { key: key.clone(), message: "not a number in the scenario".into() })?;
+                let bounds = bounds_of(key, initial).map_err(|message| FitError::Key { key: key.clone(), message })?;
+                Ok(Parameter { key: key.clone(), initial, bounds })
+            })
+            .collect::<Result<Vec<_>, FitError>>()?;
+        Ok(Problem { path: path.into(), document, robot: scenario.model.robot, settings, parameters })
+    }
+
+    /// The scenario file's text with the parameters at `values`.
+    pub fn scenario_text(&self, values: &[f64]) -> Result<String, FitError> {
+        let document = self.document_at(values)?;
+        toml::to_string(&document).map_err(|e| {
+            Box::new(ScenarioError::Parse { path: self.path.clone(), message: format!("writing: {e}") }).into()
+        })
+    }
+
+    fn document_at(&self, values: &[f64]) -> Result<toml::Value, FitError> {
+        let mut document = self.document.clone();
+        for (p, v) in self.parameters.iter().zip(values) {
+            set_key(&mut document, &p.key, toml::Value::Float(*v))
+                .map_err(|message| FitError::Key { key: p.key.clone(), message })?;
+        }
+        Ok(document)
+    }
+
+    /// A run of the scenario with the parameters at `values`.
+    pub fn run_at(&self, values: &[f64]) -> Result<(RunSummary, Series), FitError> {
+        let spec: ScenarioSpec = self.document_at(values)?.try_into().map_err(|e: toml::de::Error| {
+            Box::new(ScenarioError::Parse { path: self.path.clone(), message: e.to_string() })
+        })?;
+        let mut model = Scenario::from_spec_and_robot(&self.path, spec, self.robot.clone()).map_err(Box::new)?.model;
+        if let Some(step_s) = self.settings.step_s {
+            model.time.step_s = step_s;
+        }
+        run(&model, self.settings.fidelity).map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
+    }
+}
+
+fn show(parameters: &[Parameter], values: &[f64]) -> String {
+    parameters.iter().zip(values).map(|(p, v)| format!("{}={v:.6e}", p.key)).collect::<Vec<_>>().join(", ")
+}
+
+/// The number at dotted `key` of a TOML document (array entries by index).
+fn get_number(document: &toml::Value, key: &str) -> Option<f64> {
+    let mut node = document;
+    for segment in key.split('.') {
+        node = match node {
+            toml::Value::Table(table) => table.get(segment)?,
+            toml::Value::Array(items) => items.get(segment.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    match node {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// A fitted parameter.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Fitted {
+    /// The scenario key.
+    pub key: String,
+    /// Its value in the scenario.
+    pub initial: f64,
+    /// The value found.
+    pub value: f64,
+    /// Its standard error.
+    pub standard_error: f64,
+    /// The 95 % interval, value ± 1.96 standard errors.
+    pub interval_95: [f64; 2],
+    /// The bounds searched.
+    pub bounds: [f64; 2],
+}
+
+/// What a fit found and what it cost.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FitReport {
+    /// Each parameter.
+    pub parameters: Vec<Fitted>,
+    /// The measured signals' time shift applied (added to the measured times), s.
+    pub shift_s: f64,
+    /// RMS of the normalized residuals at the scenario's values and at the fitted ones.
+    pub rms_residual: [f64; 2],
+    /// Runs spent.
+    pub evaluations: usize,
+    /// Iterations of Levenberg–Marquardt.
+    pub iterations: usize,
+    /// Whether it converged to its tolerance.
+    pub converged: bool,
+    /// Residuals, and how many independent samples they are worth.
+    pub residuals: usize,
+    /// The residuals' effective number of independent samples.
+    pub effective_samples: f64,
+}
+
+/// Fits the problem's parameters to `signals`.
+pub fn fit(problem: &Problem, signals: &[Signal], options: &lm::LmOptions) -> Result<FitReport, FitError> {
+    let initial: Vec<f64> = problem.parameters.iter().map(|p| p.initial).collect();
+    let bounds: Vec<(f64, f64)> = problem.parameters.iter().map(|p| p.bounds).collect();
+    let (summary, series) = problem.run_at(&initial)?;
+    let mut shift_s = alignment_shift(signals, &summary, &series)?;
+    let start_ssr = residuals(signals, &summary, &series, shift_s)?.iter().map(|r| r * r).sum::<f64>();
+    let (mut values, mut evaluations) = (initial.clone(), 1);
+    // The shift found with the scenario's values is biased by their error: fit, re-align with the
+    // fitted values, and fit again until the shift holds to a tenth of a sample.
+    let resolution = sample_interval_s(signals) / 10.0;
+    let solution = loop {
+        let mut objective = |values: &[f64]| {
+            let (summary, series) = problem.run_at(values)?;
+            residuals(signals, &summary, &series, shift_s)
+        };
+        let solution = lm::minimize(&mut objective, &values, &bounds, options)?;
+        let (summary, series) = problem.run_at(&solution.parameters)?;
+        evaluations += solution.evaluations + 1;
+        let aligned = alignment_shift(signals, &summary, &series)?;
+        let settled = (aligned - shift_s).abs() <= resolution;
+        values.clone_from(&solution.parameters);
+        shift_s = aligned;
+        if settled || evaluations > 20 * options.max_iterations {
+            break solution;
+        }
+    };
+    let n = solution.residuals as f64;
+    let parameters = problem
+        .parameters
+        .iter()
+        .zip(solution.parameters.iter().zip(&solution.standard_errors))
+        .map(|(p, (&value, &se))| Fitted {
+            key: p.key.clone(),
+            initial: p.initial,
+            value,
+            standard_error: se,
+            interval_95: [value - 1.96 * se, value + 1.96 * se],
+            bounds: [p.bounds.0, p.bounds.1],
+        })
+        .collect();
+    Ok(FitReport {
+        parameters,
+        shift_s,
+        rms_residual: [start_ssr, solution.sum_of_squares[1]].map(|s| (s / n).sqrt()),
+        evaluations,
+        iterations: solution.iterations,
+        converged: solution.converged,
+        residuals: solution.residuals,
+        effective_samples: solution.effective_samples,
+    })
+}
+
+/// The simulated signal at times `t_s` (linear between steps, held beyond the ends).
+fn resample(t_sim: &[f64], values: &[f64], t_s: &[f64]) -> Vec<f64> {
+    let mut j = 0;
+    t_s.iter()
+        .map(|&t| {
+            while j + 2 < t_sim.len() && t_sim[j + 1] < t {
+                j += 1;
+            }
+            let (a, b) = (j, (j + 1).min(t_sim.len() - 1));
+            let w = if t_sim[b] > t_sim[a] { ((t - t_sim[a]) / (t_sim[b] - t_sim[a])).clamp(0.0, 1.0) } else { 0.0 };
+            values[a] + w * (values[b] - values[a])
+        })
+        .collect()
+}
+
+/// Every signal's residuals at its times shifted by `shift_s`, over its measured peak.
+fn residuals(signals: &[Signal], summary: &RunSummary, series: &Series, shift_s: f64) -> Result<Vec<f64>, FitError> {
+    let mut out = Vec::new();
+    for signal in signals {
+        let values = simulated(&signal.name, summary, series).ok_or_else(|| FitError::Signal(signal.name.clone()))?;
+        let times: Vec<f64> = signal.t_s.iter().map(|t| t + shift_s).collect();
+        let sim = resample(&series.t_s, &values, &times);
+        let peak = signal.values.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(1e-300);
+        out.extend(sim.iter().zip(&signal.values).map(|(s, m)| (s - m) / peak));
+    }
+    Ok(out)
+}
+
+/// The first signal's mean sample interval, s (0 without samples).
+fn sample_interval_s(signals: &[Signal]) -> f64 {
+    signals
+        .first()
+        .filter(|s| s.t_s.len() >= 2)
+        .map_or(0.0, |s| (s.t_s[s.t_s.len() - 1] - s.t_s[0]) / (s.t_s.len() - 1) as f64)
+}
+
+/// The shift of the measured times that best aligns the signals with the run: the least summed
+/// squared difference (the cross-correlation's peak, for signals of equal energy) over shifts of
+/// whole samples within a tenth of the record, refined by a parabola through the best and its
+/// neighbours.
+fn alignment_shift(signals: &[Signal], summary: &RunSummary, series: &Series) -> Result<f64, FitError> {
+    let Some(first) = signals.first().filter(|s| s.t_s.len() >= 2) else { return Ok(0.0) };
+    let dt = sample_interval_s(signals);
+    let reach = (first.t_s.len() / 10) as i64;
+    let score = |k: i64| -> Result<f64, FitError> {
+        let r = residuals(signals, summary, series, k as f64 * dt)?;
+        Ok(-r.iter().map(|x| x * x).sum::<f64>())
+    };
+    let mut best = (0, score(0)?);
+    for k in -reach..=reach {
+        let s = score(k)?;
+        if s > best.1 {
+            best = (k, s);
+        }
+    }
+    let (k, s0) = best;
+    let (sm, sp) = (score(k - 1)?, score(k + 1)?);
+    let curvature = sm - 2.0 * s0 + sp;
+    let offset = if curvature < 0.0 { 0.5 * (sm - sp) / curvature } else { 0.0 };
+    Ok((k as f64 + offset.clamp(-0.5, 0.5)) * dt)
+}
