@@ -188,6 +188,19 @@ pub fn run(scenario: &Scenario, fidelity: Option<Fidelity>) -> Result<(RunSummar
 
 /// Runs a scenario with `options`.
 pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
+    let (result, series) = run_partial(scenario, options);
+    result.map(|summary| (summary, series))
+}
+
+/// Runs a scenario with `options` and returns the series however the run ended: up to the last
+/// step the divergence guard passed if it stopped the run (empty if the scene could not be built).
+pub fn run_partial(scenario: &Scenario, options: &RunOptions) -> (Result<RunSummary, SceneError>, Series) {
+    let mut series = Series::default();
+    let result = run_into(scenario, options, &mut series);
+    (result, series)
+}
+
+fn run_into(scenario: &Scenario, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
     // The beam and its modes, built once for the model choice and the model.
     let beam = crate::beam::BeamModel::new(scenario.beam_spec()?).map_err(ArmError::from)?;
     let modes = beam.modes().map_err(ArmError::from)?;
@@ -205,7 +218,7 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     // Frames at the frame rate, and a quarter more for the steps in contact (all drawn).
     let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
-    let mut series = Series::with_capacity(steps, scene.pads.len(), modal_dofs, frames);
+    *series = Series::with_capacity(steps, scene.pads.len(), modal_dofs, frames);
     let mut trackers = vec![ImpactTracker::default(); scene.pads.len()];
     if options.capture_frames {
         series.layout = Some(scene.layout());
@@ -221,8 +234,8 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(scenario, &scene)?);
     let string_length_m = scenario.pipe_string()?.map_or(f64::INFINITY, |s| s.length_m);
-    record(&scene, &first, &mut series, &mut trackers);
-    keeper.keep(&scene, &mut series, options.capture_frames, false);
+    record(&scene, &first, series, &mut trackers);
+    keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
     // be a step too short to take.
@@ -249,13 +262,13 @@ pub fn run_with(scenario: &Scenario, options: &RunOptions) -> Result<(RunSummary
         if let Some(what) = scene_fault(&scene, string_length_m) {
             return Err(divergence_error(scenario, &scene, Divergence { t_s: sample.t_s, what }));
         }
-        record(&scene, &sample, &mut series, &mut trackers);
-        keeper.keep(&scene, &mut series, options.capture_frames, end - scene.arm.time_s() <= sliver);
+        record(&scene, &sample, series, &mut trackers);
+        keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
-    let mut summary = summarize(scenario, &scene, &series, &trackers, fidelity, steps, wall_time_s)?;
+    let mut summary = summarize(scenario, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
-    Ok((summary, series))
+    Ok(summary)
 }
 
 /// The error control of free-motion steps, if the scenario asks for longer free steps.
