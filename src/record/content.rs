@@ -1,10 +1,11 @@
-//! What a recording holds, logged into a `RecordingStream` whatever its sink: the plots, the 3D
-//! scene, the events and (for a finished run) the summary. Layout in the module above.
+//! What a recording holds, as rerun chunks whatever carries them to a file or a viewer: the
+//! plots, the 3D scene, the events and (for a finished run) the summary. Layout in the module
+//! above.
 
 use std::borrow::Cow;
 
-use rerun::log::{Chunk, RowId};
-use rerun::{RecordingStream, RecordingStreamResult, TextLogLevel, TimeColumn};
+use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
+use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TextLogLevel, TimeColumn, TimePoint};
 
 use super::{Ending, Recorded, force_entity};
 use crate::contact::{Impact, ImpactTracker};
@@ -23,8 +24,8 @@ pub fn arrow_scale_n_per_m(peak_n: f64) -> f64 {
     10f64.powf(peak_n.max(1.0).log10().ceil())
 }
 
-/// Logs `run` into `stream`.
-pub(super) fn log_run(stream: &RecordingStream, run: &Recorded) -> RecordingStreamResult<()> {
+/// The chunks of `run`: one per entity.
+pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
     let pairs = pairs(run);
     let mut keep = Cow::Borrowed(&run.series.keep[..]);
     if matches!(run.ending, Ending::Diverged { .. })
@@ -33,15 +34,15 @@ pub(super) fn log_run(stream: &RecordingStream, run: &Recorded) -> RecordingStre
         // The plots run up to the last step the guard passed, whatever the record rate.
         *last = true;
     }
-    let writer = Writer { stream, run, keep: &keep };
+    let mut writer = Writer { chunks: Vec::new(), run, keep: &keep };
     writer.plots(&pairs)?;
     let note = run.series.layout.as_ref().map(|layout| writer.scene(layout, &pairs)).transpose()?;
     writer.events(&pairs, note)?;
     if let Ending::Finished(summary) = run.ending {
         let text = serde_json::to_string_pretty(summary).expect("a summary serializes");
-        stream.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
+        writer.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
     }
-    Ok(())
+    Ok(writer.chunks)
 }
 
 /// A contact pair's label (`arm–<pad>`) and impacts: the summary's, or for a diverged run those
@@ -65,27 +66,46 @@ fn pairs(run: &Recorded) -> Vec<Pair> {
 }
 
 struct Writer<'a> {
-    stream: &'a RecordingStream,
+    chunks: Vec<Chunk>,
     run: &'a Recorded<'a>,
     /// Steps the plots keep.
     keep: &'a [bool],
 }
 
 impl Writer<'_> {
+    /// Columns of `entity` at the times of `index` (what `RecordingStream::send_columns` sends).
+    fn send_columns(
+        &mut self,
+        entity: &str,
+        index: TimeColumn,
+        columns: impl IntoIterator<Item = SerializedComponentColumn>,
+    ) -> RecordingStreamResult<()> {
+        let indexes = std::iter::once((*index.timeline().name(), index)).collect();
+        let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
+        self.chunks.push(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
+        Ok(())
+    }
+
+    /// A static archetype of `entity`.
+    fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RecordingStreamResult<()> {
+        self.chunks.push(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
+        Ok(())
+    }
+
     /// The kept steps of `values`.
     fn kept<T: Copy>(&self, values: impl IntoIterator<Item = T>) -> Vec<T> {
         values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
     }
 
-    fn send(&self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
+    fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
         let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
         let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
-        self.stream.send_columns(entity, [times], columns)
+        self.send_columns(entity, times, columns)
     }
 
     /// A pad's force at the kept steps with each impact's interpolated peak inserted at its
     /// time, so the plotted series peaks at the reported peak.
-    fn send_force(&self, entity: &str, forces: &[f64], impacts: &[Impact]) -> RecordingStreamResult<()> {
+    fn send_force(&mut self, entity: &str, forces: &[f64], impacts: &[Impact]) -> RecordingStreamResult<()> {
         let mut rows: Vec<(f64, f64)> = self.kept(self.run.series.t_s.iter().copied().zip(forces.iter().copied()));
         let peaks = impacts.iter().map(|i| (i.peak_time_s, i.peak_force_n));
         for (t, f) in peaks.filter(|p| p.0.is_finite()) {
@@ -96,11 +116,12 @@ impl Writer<'_> {
         }
         let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|r| r.0));
         let columns = rerun::Scalars::new(rows.iter().map(|r| r.1)).columns_of_unit_batches()?;
-        self.stream.send_columns(entity, [times], columns)
+        self.send_columns(entity, times, columns)
     }
 
-    fn plots(&self, pairs: &[Pair]) -> RecordingStreamResult<()> {
-        let s = self.run.series;
+    fn plots(&mut self, pairs: &[Pair]) -> RecordingStreamResult<()> {
+        let run = self.run;
+        let s = run.series;
         for (k, axis) in ["axial", "transverse"].iter().enumerate() {
             self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
             self.send(&format!("plots/tip_velocity/{axis}"), s.tip_velocity_m_s.iter().map(|d| d[k]))?;
@@ -118,7 +139,7 @@ impl Writer<'_> {
         if !s.string_slip_m.is_empty() {
             self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
         }
-        for (k, (name, forces)) in self.run.pad_names.iter().zip(&s.pad_force_n).enumerate() {
+        for (k, (name, forces)) in run.pad_names.iter().zip(&s.pad_force_n).enumerate() {
             let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
             self.send_force(&force_entity(name), forces, impacts)?;
         }
@@ -126,18 +147,18 @@ impl Writer<'_> {
     }
 
     /// The 3D scene; returns the note on its display scales for the events.
-    fn scene(&self, layout: &SceneLayout, pairs: &[Pair]) -> RecordingStreamResult<String> {
-        let out = self.stream;
-        out.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
+    fn scene(&mut self, layout: &SceneLayout, pairs: &[Pair]) -> RecordingStreamResult<String> {
+        let run = self.run;
+        self.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
         // Sized to the arm (15 × 10 m for the 9 m arm), so a lab arm is not lost on a rig's floor.
         let l = layout.length_m as f32;
         let half = (5.0 / 3.0 * l, 0.05 / 9.0 * l, 5.0 / 9.0 * l);
-        out.log_static(
+        self.log_static(
             "world/ground",
             &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -half.1, 0.0)], [half])
                 .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
         )?;
-        let max_deflection = self.run.series.tip_deflection_m.iter().map(|d| d[1].abs()).fold(0.0, f64::max);
+        let max_deflection = run.series.tip_deflection_m.iter().map(|d| d[1].abs()).fold(0.0, f64::max);
         let magnify = magnification(max_deflection, layout.length_m);
         let peak = pairs.iter().flat_map(|p| &p.1).map(|i| i.peak_force_n).fold(0.0, f64::max);
         let scale = arrow_scale_n_per_m(peak);
@@ -146,8 +167,8 @@ impl Writer<'_> {
         let note = format!(
             "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
         );
-        let frames = &self.run.series.frames;
-        let times = || [TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s))];
+        let frames = &run.series.frames;
+        let times = || TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
         // One chunk per entity: shapes and poses go in the same columns (send_columns), not a
         // log call per frame, nor a static chunk for the shapes beside the poses — rerun's cost
         // is per chunk (encoding, footer manifest), the repeated half sizes are a few kB.
@@ -161,7 +182,7 @@ impl Writer<'_> {
                 .with_centers(centers.collect::<Vec<_>>())
                 .with_quaternions(quats.collect::<Vec<_>>())
                 .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
-            out.send_columns(entity, times(), columns)?;
+            self.send_columns(&entity, times(), columns)?;
         }
         let pads = || frames.iter().flat_map(|f| f.pads.iter().zip(&layout.pads));
         let columns = rerun::Boxes3D::update_fields()
@@ -174,12 +195,12 @@ impl Writer<'_> {
         // The fill mode is one value per row, not per box: its own partition, the same chunk.
         let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
         let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
-        out.send_columns("world/pads", times(), columns.chain(fill))?;
-        let magnified = self.run.series.frames.iter().map(|f| centreline_points(layout, f, magnify));
+        self.send_columns("world/pads", times(), columns.chain(fill))?;
+        let magnified = frames.iter().map(|f| centreline_points(layout, f, magnify));
         let columns = rerun::LineStrips3D::update_fields()
             .with_strips(magnified.collect::<Vec<_>>())
             .columns(std::iter::repeat_n(1, frames.len()))?;
-        out.send_columns(centreline, times(), columns)?;
+        self.send_columns(&centreline, times(), columns)?;
         let origins: Vec<[f32; 3]> =
             frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
         let vectors: Vec<[f32; 3]> = frames
@@ -192,14 +213,14 @@ impl Writer<'_> {
             .with_origins(origins)
             .with_vectors(vectors)
             .columns(frames.iter().map(|f| f.contacts.len()))?;
-        out.send_columns(arrows, times(), columns)?;
+        self.send_columns(&arrows, times(), columns)?;
         Ok(note)
     }
 
     /// The events at their times: impacts, warnings, the model, the display `note`; for a
     /// diverged run, the guard's message last. (Not static: a static text log on `events` would
     /// shadow every timed one in the viewer.)
-    fn events(&self, pairs: &[Pair], note: Option<String>) -> RecordingStreamResult<()> {
+    fn events(&mut self, pairs: &[Pair], note: Option<String>) -> RecordingStreamResult<()> {
         let mut events: Vec<(f64, String, &str)> = Vec::new();
         for (pair, impacts) in pairs {
             for (k, i) in impacts.iter().enumerate() {
@@ -231,7 +252,7 @@ impl Writer<'_> {
                 chunk.with_archetype(RowId::new(), time, &rerun::TextLog::new(message).with_level(level))
             })
             .build()?;
-        self.stream.send_chunk(chunk);
+        self.chunks.push(chunk);
         Ok(())
     }
 }

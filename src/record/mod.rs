@@ -23,14 +23,16 @@
 //! interpolated peak is inserted at its time in its pad's force series, so no peak is lost and the
 //! plot peaks at the summary's figure ([`crate::run::RunOptions`]).
 //!
-//! A recording goes through rerun's `RecordingStream`: to a file, written to a
-//! temporary name and renamed when complete, so a failed write leaves no half recording; or to a
-//! viewer ([`Viewer`]). A run the divergence guard stopped is recorded up to its last good step,
+//! A recording is a file, written by the small encoder of `rrd` to a temporary name and renamed
+//! when complete, so a failed write leaves no half recording; or a stream to a viewer
+//! ([`Viewer`]) through rerun's public `RecordingStream`. Both carry the same chunks and layout. A run the divergence guard stopped is recorded up to its last good step,
 //! with the guard's message as the last event and no `summary` ([`Ending::Diverged`]).
 
 use std::path::Path;
 
 mod content;
+mod layout;
+mod rrd;
 mod stream;
 
 pub use content::{arrow_scale_n_per_m, magnification};
@@ -47,6 +49,9 @@ pub enum RecordError {
     /// Getting the data through to the file or the viewer.
     #[error("recording to {target}: {source}")]
     Flush { target: String, source: rerun::sink::SinkFlushError },
+    /// Writing the file (rerun's encoder, as text: its error types are many).
+    #[error("recording {path}: {message}")]
+    Rrd { path: String, message: String },
     /// Nothing listens at a viewer's address.
     #[error("no rerun viewer at {url} ({source}); start one with `rerun`")]
     NoViewer { url: String, source: std::io::Error },
@@ -115,22 +120,33 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
         std::fs::create_dir_all(dir).map_err(io)?;
     }
     let tmp = path.with_extension("rrd.tmp");
-    let written = stream::to_file(&tmp, run.ending.scenario(), &shown).and_then(|out| {
-        content::log_run(&out, run).map_err(|source| RecordError::Stream { target: shown.clone(), source })?;
-        stream::finish(out, &shown)
-    });
-    if let Err(e) = written {
+    let file = std::fs::File::create(&tmp).map_err(io)?;
+    let written = content::chunks(run)
+        .map_err(|e| e.to_string())
+        .and_then(|chunks| write_rrd(file, run.ending.scenario(), &chunks));
+    if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
-        return Err(e);
+        return Err(RecordError::Rrd { path: shown, message });
     }
     replace(&tmp, path).map_err(io)
+}
+
+/// The recording `recording_id` of `chunks`, then its blueprint, into `file`.
+fn write_rrd(file: std::fs::File, recording_id: &str, chunks: &[rerun::log::Chunk]) -> Result<(), String> {
+    let mut out = rrd::RrdFile::create(file, "pipearm", recording_id)?;
+    for chunk in chunks {
+        out.send_chunk(chunk)?;
+    }
+    out.blueprint(&layout::run_layout())?;
+    out.finish()
 }
 
 /// Streams `run` to `viewer`, as a new recording named after its scenario.
 pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordError> {
     let target = viewer.to_string();
+    let chunks = content::chunks(run).map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
-    content::log_run(&out, run).map_err(|source| RecordError::Stream { target: target.clone(), source })?;
+    out.send_chunks(chunks);
     stream::finish(out, &target)
 }
 

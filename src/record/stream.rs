@@ -1,15 +1,14 @@
-//! Where a recording goes, on rerun's public `RecordingStream`: a file written once at the end of
-//! a run, or a viewer reached as rerun's own tools reach one (`--connect [URL]`, `--spawn`).
-
-use std::path::Path;
+//! A run streamed to a viewer on rerun's public `RecordingStream`, the viewer reached as rerun's
+//! own tools reach one (`--connect [URL]`, `--spawn`).
 
 use rerun::blueprint::{
-    Blueprint, BlueprintActivation, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical,
+    Blueprint, BlueprintActivation, ContainerLike, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical,
 };
 use rerun::log::ChunkBatcherConfig;
 use rerun::{RecordingStream, RecordingStreamBuilder};
 
 use super::RecordError;
+use super::layout::{BlueprintLayout, run_layout};
 
 /// Application id of every recording.
 const APPLICATION_ID: &str = "pipearm";
@@ -33,32 +32,16 @@ impl std::fmt::Display for Viewer {
     }
 }
 
-/// A stream of recording `recording_id` (rerun's random id if `None`, then named `name`).
-///
-/// The run arrives all at once, its series as whole columns (a chunk each, which the batcher
-/// passes straight through), so the batcher only gathers the few static rows until the stream is
-/// flushed: it never flushes on its own (no timer, no size threshold), whatever the
-/// `RERUN_FLUSH_*` variables say. Enabled whatever `RERUN` says: the recording was asked for.
-fn builder(recording_id: Option<&str>, name: &str) -> RecordingStreamBuilder {
-    let builder = RecordingStreamBuilder::new(APPLICATION_ID).enabled(true).batcher_config(ChunkBatcherConfig::NEVER);
-    match recording_id {
-        Some(id) => builder.recording_id(id),
-        None => builder.recording_name(name),
-    }
-}
-
-/// A stream to the file `path` (errors name `target`), its recording's id `recording_id`: the
-/// scenario's name, as the file's. rerun's file sink compresses the chunks (LZ4) and writes the
-/// footer (which `rerun rrd verify` requires) when the stream closes.
-pub(super) fn to_file(path: &Path, recording_id: &str, target: &str) -> Result<RecordingStream, RecordError> {
-    builder(Some(recording_id), recording_id)
-        .save(path)
-        .map_err(|source| RecordError::Stream { target: target.to_string(), source })
-}
-
 /// A stream to `viewer`, as a new recording named `name`.
+///
+/// The run arrives all at once as whole chunks, which the batcher passes straight through, so it
+/// never flushes on its own (no timer, no size threshold) whatever the `RERUN_FLUSH_*` variables
+/// say; [`finish`] flushes. Enabled whatever `RERUN` says: the stream was asked for.
 pub(super) fn to_viewer(viewer: &Viewer, name: &str) -> Result<RecordingStream, RecordError> {
-    let builder = builder(None, name);
+    let builder = RecordingStreamBuilder::new(APPLICATION_ID)
+        .enabled(true)
+        .batcher_config(ChunkBatcherConfig::NEVER)
+        .recording_name(name);
     let stream = match viewer {
         Viewer::Connect(url) => {
             check_listening(url)?;
@@ -92,9 +75,8 @@ fn check_listening(url: &str) -> Result<(), RecordError> {
 const CONNECT_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(1);
 
 /// Ends a stream: its data through the sink, then the blueprint and the command that activates
-/// it (last: the viewer activates a blueprint once it is complete), and closes it; a file sink
-/// writes its footer as the stream closes, before this returns. A viewer that cannot be reached
-/// fails the flush after rerun's connection timeout (5 s).
+/// it (last, as in a file), and closes it. A viewer that stops answering fails the flush after
+/// rerun's connection timeout (5 s).
 pub(super) fn finish(stream: RecordingStream, target: &str) -> Result<(), RecordError> {
     let flush = |stream: &RecordingStream| {
         stream.flush_blocking().map_err(|source| RecordError::Flush { target: target.to_string(), source })
@@ -108,14 +90,20 @@ pub(super) fn finish(stream: RecordingStream, target: &str) -> Result<(), Record
     Ok(())
 }
 
-/// The view a recording opens with: the 3D scene left; contact force, tip deflection, drive
-/// torque and the event log one above the other on the right.
+/// The run's layout as rerun's blueprint.
 fn blueprint() -> Blueprint {
-    let plots = Vertical::new([
-        TimeSeriesView::new("contact force (N)").with_origin("plots/contact_force").into(),
-        TimeSeriesView::new("tip deflection (m)").with_origin("plots/tip_deflection").into(),
-        TimeSeriesView::new("drive torque (N·m)").with_origin("plots/drive_torque").into(),
-        TextLogView::new("events").with_origin("events").into(),
-    ]);
-    Blueprint::new(Horizontal::new([Spatial3DView::new("scene").with_origin("world").into(), plots.into()]))
+    match to_rerun(run_layout()) {
+        ContainerLike::View(view) => Blueprint::new(view),
+        root => Blueprint::new(root),
+    }
+}
+
+fn to_rerun(part: BlueprintLayout) -> ContainerLike {
+    match part {
+        BlueprintLayout::View { class: "3D", name, origin } => Spatial3DView::new(name).with_origin(origin).into(),
+        BlueprintLayout::View { class: "TextLog", name, origin } => TextLogView::new(name).with_origin(origin).into(),
+        BlueprintLayout::View { name, origin, .. } => TimeSeriesView::new(name).with_origin(origin).into(),
+        BlueprintLayout::Horizontal(children) => Horizontal::new(children.into_iter().map(to_rerun)).into(),
+        BlueprintLayout::Vertical(children) => Vertical::new(children.into_iter().map(to_rerun)).into(),
+    }
 }
