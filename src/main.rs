@@ -13,10 +13,11 @@ use clap::{Parser, Subcommand};
 use pipearm::analysis::StiffnessClass;
 use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
 use pipearm::beam::BeamModel;
-use pipearm::record::{write_recording, write_summary};
+use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, write_baseline};
-use pipearm::run::{RunOptions, RunSummary, run, run_with};
+use pipearm::run::{RunOptions, RunSummary, run, run_partial};
 use pipearm::scenario::Scenario;
+use pipearm::scene::SceneError;
 
 /// Flexible pipe-handling arms and the impacts on their dampeners.
 #[derive(Parser)]
@@ -29,7 +30,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json and
-    /// print the summary.
+    /// print the summary. A run the divergence guard stops writes recordings/<name>.diverged.rrd,
+    /// up to the divergence, and no summary.
     Run {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
@@ -40,12 +42,21 @@ enum Command {
         /// Folder for the recording and the summary.
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
-        /// Print the summary only; write nothing.
+        /// Print the summary only; write no file.
         #[arg(long)]
         no_record: bool,
         /// Rate at which steps without contact are recorded, Hz (steps in contact always are).
         #[arg(long, default_value_t = 25.0)]
         record_rate: f64,
+        /// Also stream the run to the rerun viewer listening at URL (default: rerun's, the viewer
+        /// `rerun` starts); put it after the scenario, or as --connect=URL.
+        #[arg(long, value_name = "URL", num_args = 0..=1, default_missing_value = rerun::DEFAULT_CONNECT_URL,
+              value_parser = parse_viewer_url, conflicts_with = "spawn")]
+        connect: Option<String>,
+        /// Also stream the run to a rerun viewer started from `rerun` on the PATH (or to the one
+        /// already listening on rerun's default port).
+        #[arg(long)]
+        spawn: bool,
     },
     /// Run scenarios and compare them with their regression baselines.
     Check {
@@ -132,19 +143,35 @@ fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
     }
 }
 
+/// A viewer's URL as rerun writes them (`rerun+http://HOST:PORT/proxy`); rerun checks the rest.
+fn parse_viewer_url(s: &str) -> Result<String, String> {
+    if s.contains("://") {
+        Ok(s.to_string())
+    } else {
+        Err(format!(
+            "`{s}`: expected a URL such as {} (the scenario goes before --connect)",
+            rerun::DEFAULT_CONNECT_URL
+        ))
+    }
+}
+
 fn main() -> Result<()> {
     exit_quietly_on_closed_pipe();
     match Cli::parse().command {
-        Command::Run { scenario, model, out, no_record, record_rate } => run_command(
-            &scenario,
-            RunOptions {
+        Command::Run { scenario, model, out, no_record, record_rate, connect, spawn } => {
+            let viewer = match (connect, spawn) {
+                (Some(url), _) => Some(Viewer::Connect(url)),
+                (None, true) => Some(Viewer::Spawn),
+                (None, false) => None,
+            };
+            let options = RunOptions {
                 fidelity: model,
                 record_rate_hz: record_rate,
-                capture_frames: !no_record,
+                capture_frames: !no_record || viewer.is_some(),
                 ..RunOptions::default()
-            },
-            &out,
-        ),
+            };
+            run_command(&scenario, options, Outputs { files: (!no_record).then_some(out.as_path()), viewer })
+        }
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
         Command::Seed { section, out } => seed(section.as_deref(), &out),
@@ -153,22 +180,41 @@ fn main() -> Result<()> {
     }
 }
 
-fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
+/// Where `pipearm run` puts a run besides its printed summary.
+struct Outputs<'a> {
+    /// The folder for `<name>.rrd` and `<name>.summary.json` (none with --no-record).
+    files: Option<&'a Path>,
+    /// A viewer to stream the run to.
+    viewer: Option<Viewer>,
+}
+
+fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()> {
     if !(options.record_rate_hz.is_finite() && options.record_rate_hz > 0.0) {
         bail!("--record-rate = {}: allowed a rate > 0 Hz", options.record_rate_hz);
     }
     let started = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
     let model = &scenario.model;
-    let (summary, series) = run_with(model, &options).with_context(|| format!("{}: running", path.display()))?;
+    let (result, series) = run_partial(model, &options);
+    let name = &model.name;
+    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let summary = match result {
+        Ok(summary) => summary,
+        Err(error @ SceneError::Diverged { t_s, .. }) if options.capture_frames => {
+            let message = error.to_string();
+            let ending = Ending::Diverged { scenario: name, t_s, message: &message };
+            record_divergence(&outputs, name, &Recorded { series: &series, pad_names: &pads, ending });
+            return Err(anyhow::Error::new(error).context(format!("{}: running", path.display())));
+        }
+        Err(error) => return Err(error).with_context(|| format!("{}: running", path.display())),
+    };
     print_summary(path, &summary);
-    if options.capture_frames {
+    let run = Recorded { series: &series, pad_names: &pads, ending: Ending::Finished(&summary) };
+    if let Some(out) = outputs.files {
         let started = std::time::Instant::now();
-        let name = &model.name;
-        let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
         let rrd = out.join(format!("{name}.rrd"));
         let json = out.join(format!("{name}.summary.json"));
-        write_recording(&rrd, &summary, &series, &pads)?;
+        save_recording(&rrd, &run)?;
         write_summary(&json, &summary)?;
         let bytes = std::fs::metadata(&rrd).map(|m| m.len()).unwrap_or(0);
         println!(
@@ -178,6 +224,11 @@ fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
             started.elapsed().as_secs_f64(),
             json.display()
         );
+        // This run finished: a recording of an earlier one that diverged no longer describes it.
+        let stale = diverged_path(out, name);
+        std::fs::remove_file(&stale)
+            .or_else(|e| if e.kind() == std::io::ErrorKind::NotFound { Ok(()) } else { Err(e) })
+            .with_context(|| format!("removing {}", stale.display()))?;
     }
     // In-process, one thread for the simulation: scenario read, model built, stepped, recorded.
     let total_s = started.elapsed().as_secs_f64();
@@ -185,7 +236,34 @@ fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
         "total               {total_s:.3} s from reading the scenario to the last file written ({:.0}x real time)",
         summary.simulated_s / total_s
     );
+    if let Some(viewer) = &outputs.viewer {
+        stream_recording(viewer, &run)?;
+        println!("streamed            to the {viewer}");
+    }
     Ok(())
+}
+
+/// Where a run the divergence guard stopped is recorded: beside `<name>.rrd`.
+fn diverged_path(out: &Path, name: &str) -> PathBuf {
+    out.join(format!("{name}.diverged.rrd"))
+}
+
+/// Records a diverged run for inspection: its file and its stream. The divergence is the
+/// command's error; failing to record it is reported beside it.
+fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded) {
+    if let Some(out) = outputs.files {
+        let rrd = diverged_path(out, name);
+        match save_recording(&rrd, run) {
+            Ok(()) => println!("wrote               {} (the run up to its divergence)", rrd.display()),
+            Err(e) => eprintln!("{e}"),
+        }
+    }
+    if let Some(viewer) = &outputs.viewer {
+        match stream_recording(viewer, run) {
+            Ok(()) => println!("streamed            to the {viewer} (the run up to its divergence)"),
+            Err(e) => eprintln!("{e}"),
+        }
+    }
 }
 
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.

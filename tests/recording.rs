@@ -87,13 +87,15 @@ fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) 
 fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
     use re_log_types::{LogMsg, StoreKind};
     let (summary, messages) = recorded_messages();
-    let stores: Vec<_> = messages
-        .iter()
-        .filter_map(|m| match m {
-            LogMsg::SetStoreInfo(s) => Some(s.info.store_id.clone()),
-            _ => None,
-        })
-        .collect();
+    // The stores in the order they are announced (rerun's stream may announce one twice).
+    let mut stores: Vec<_> = Vec::new();
+    for msg in &messages {
+        if let LogMsg::SetStoreInfo(s) = msg
+            && !stores.contains(&s.info.store_id)
+        {
+            stores.push(s.info.store_id.clone());
+        }
+    }
     assert_eq!(stores.iter().map(|s| s.kind()).collect::<Vec<_>>(), [StoreKind::Recording, StoreKind::Blueprint]);
     let activation = messages.iter().find_map(|m| match m {
         LogMsg::BlueprintActivationCommand(c) => Some(c.clone()),

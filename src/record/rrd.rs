@@ -1,13 +1,15 @@
-//! An `.rrd` file written on the caller's thread: chunks built from rerun's archetypes and
-//! encoded as they come, with no `RecordingStream`.
+//! An `.rrd` file written on the caller's thread, with no `RecordingStream`: the one place that
+//! uses rerun's internal types (`re_log_encoding`, `re_log_types`, the blueprint archetypes of
+//! `re_sdk_types`, all through `rerun::external`), because rerun's public path to a file costs a
+//! third of the default run (docs/performance.md, "The recording's writer").
 //!
-//! A `RecordingStream` is made for live logging: two threads per stream (batcher and sink), a
-//! second stream for the blueprint, channels between them. For a file written once at the end of
-//! a run that machinery cost as much as the encoding itself (docs/performance.md), so the writer
-//! here does what the stream would have sent, in the same messages: the recording's store info,
-//! one Arrow message per chunk, the blueprint's store (its views and containers at time 0 of the
-//! `blueprint` timeline, as rerun's `Blueprint` logs them) and the command that activates it. The
-//! encoder writes rerun's footer on [`RrdFile::finish`] (`rerun rrd verify` requires it).
+//! A `RecordingStream` is made for live logging: a batcher, a forwarding and a file-writer thread
+//! per stream, LZ4 on every chunk, a second stream for the blueprint. The writer here writes what
+//! that stream would, in the same messages: the recording's store info, one Arrow message per
+//! chunk, the blueprint's store (its views and containers at time 0 of the `blueprint` timeline,
+//! as rerun's `Blueprint` logs them) and the command that activates it, last. The encoder writes
+//! rerun's footer on [`RrdFile::finish`] (`rerun rrd verify` requires it); errors, the footer's
+//! included, are returned, not logged.
 //!
 //! Unlike rerun's streams, nothing here depends on the clock or on randomness: the blueprint's
 //! identifiers derive from the recording id and the chunks carry no `log_time`, so a run writes
@@ -20,8 +22,10 @@ use rerun::external::re_log_encoding::{Encoder, EncodingOptions};
 use rerun::external::re_log_types::{
     BlueprintActivationCommand, SetStoreInfo, StoreId, StoreInfo, StoreKind, StoreSource,
 };
-use rerun::log::{Chunk, ChunkComponents, ChunkId, LogMsg, RowId};
-use rerun::{AsComponents, SerializedComponentColumn, TimeColumn, TimePoint};
+use rerun::log::{Chunk, LogMsg, RowId};
+use rerun::{AsComponents, TimePoint};
+
+use super::layout::BlueprintLayout;
 
 /// An error from rerun's chunk builder or encoder, as text (their error types are many).
 pub type RrdResult<T> = Result<T, String>;
@@ -60,50 +64,13 @@ impl RrdFile {
         self.encoder.append(msg).map(|_| ()).map_err(text)
     }
 
-    fn send_chunk(&mut self, store: StoreId, chunk: &Chunk) -> RrdResult<()> {
+    fn send_to(&mut self, store: StoreId, chunk: &Chunk) -> RrdResult<()> {
         self.append(&LogMsg::ArrowMsg(store, chunk.to_arrow_msg().map_err(text)?))
     }
 
-    /// Columns of `entity` at the times of `index` (what `RecordingStream::send_columns` sends).
-    pub fn send_columns(
-        &mut self,
-        entity: &str,
-        index: TimeColumn,
-        columns: impl IntoIterator<Item = SerializedComponentColumn>,
-    ) -> RrdResult<()> {
-        let indexes = std::iter::once((*index.timeline().name(), index)).collect();
-        let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
-        let chunk = Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components).map_err(text)?;
-        self.send_chunk(self.recording.clone(), &chunk)
-    }
-
-    /// One chunk of `entity` with a row per `(time, archetype)` (static rows: `TimePoint::default()`).
-    pub fn log_rows<'a>(
-        &mut self,
-        entity: &str,
-        rows: impl IntoIterator<Item = (TimePoint, &'a dyn AsComponents)>,
-    ) -> RrdResult<()> {
-        self.send_rows(self.recording.clone(), entity, rows)
-    }
-
-    /// [`Self::log_rows`] into `store`.
-    fn send_rows<'a>(
-        &mut self,
-        store: StoreId,
-        entity: &str,
-        rows: impl IntoIterator<Item = (TimePoint, &'a dyn AsComponents)>,
-    ) -> RrdResult<()> {
-        let chunk = rows
-            .into_iter()
-            .fold(Chunk::builder(entity), |b, (time, row)| b.with_archetype(RowId::new(), time, row))
-            .build()
-            .map_err(text)?;
-        self.send_chunk(store, &chunk)
-    }
-
-    /// A static archetype of `entity`.
-    pub fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RrdResult<()> {
-        self.log_rows(entity, [(TimePoint::default(), archetype)])
+    /// A chunk of the recording.
+    pub fn send_chunk(&mut self, chunk: &Chunk) -> RrdResult<()> {
+        self.send_to(self.recording.clone(), chunk)
     }
 
     /// Writes `layout` as the recording's blueprint and activates it (ends the recording's store:
@@ -161,7 +128,8 @@ impl RrdFile {
     /// A blueprint row: at sequence 0 of the `blueprint` timeline, as rerun's `Blueprint` logs it.
     fn blueprint_row(&mut self, store: &StoreId, entity: &str, archetype: &dyn AsComponents) -> RrdResult<()> {
         let time = TimePoint::from([(rerun::Timeline::new_sequence("blueprint"), 0)]);
-        self.send_rows(store.clone(), entity, [(time, archetype)])
+        let chunk = Chunk::builder(entity).with_archetype(RowId::new(), time, archetype).build().map_err(text)?;
+        self.send_to(store.clone(), &chunk)
     }
 
     /// Writes the footer and flushes the file.
@@ -172,24 +140,12 @@ impl RrdFile {
     }
 }
 
-/// Blueprint types (rerun re-exports their components, not their archetypes).
+/// Blueprint types (`rerun::blueprint` re-exports their components, not their archetypes).
 mod blueprint {
-    pub use re_sdk_types::blueprint::archetypes::{ContainerBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint};
-    pub use re_sdk_types::blueprint::components::{
-        ContainerKind, IncludedContent, QueryExpression, RootContainer, ViewClass,
+    pub use rerun::blueprint::components::{ContainerKind, IncludedContent, QueryExpression, RootContainer, ViewClass};
+    pub use rerun::external::re_sdk_types::blueprint::archetypes::{
+        ContainerBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint,
     };
-}
-
-/// The view a recording opens with: views (rerun's class identifiers: `3D`, `TimeSeries`,
-/// `TextLog`, ...) in horizontal and vertical containers.
-#[derive(Debug, Clone, PartialEq)]
-pub enum BlueprintLayout {
-    /// A view of the entities under `origin`.
-    View { class: &'static str, name: &'static str, origin: &'static str },
-    /// Side by side.
-    Horizontal(Vec<BlueprintLayout>),
-    /// One above the other.
-    Vertical(Vec<BlueprintLayout>),
 }
 
 /// A version-4-shaped UUID for the `k`-th blueprint part of a recording, from its id (FNV-1a):

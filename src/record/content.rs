@@ -1,0 +1,335 @@
+//! What a recording holds, as rerun chunks whatever carries them to a file or a viewer: the
+//! plots, the 3D scene, the events and (for a finished run) the summary. Layout in the module
+//! above.
+
+use std::borrow::Cow;
+
+use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
+use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TextLogLevel, TimeColumn, TimePoint};
+
+use super::{Ending, Recorded, force_entity};
+use crate::contact::{Impact, ImpactTracker};
+use crate::scene::{Frame, SceneLayout};
+
+/// Display magnification of the deflection: a power of ten that makes the largest tip
+/// deflection `max_tip_deflection_m` (m) show as about 2 % of the arm's length `length_m` (m)
+/// (1 if it already does).
+pub fn magnification(max_tip_deflection_m: f64, length_m: f64) -> f64 {
+    let d = max_tip_deflection_m.max(1e-12);
+    10f64.powf((0.02 * length_m / d).log10().round()).max(1.0)
+}
+
+/// Newtons per metre of force arrow: the power of ten above the largest contact force `peak_n` (N).
+pub fn arrow_scale_n_per_m(peak_n: f64) -> f64 {
+    10f64.powf(peak_n.max(1.0).log10().ceil())
+}
+
+/// The chunks of `run`: one per entity.
+pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
+    let pairs = pairs(run);
+    let mut keep = Cow::Borrowed(&run.series.keep[..]);
+    if matches!(run.ending, Ending::Diverged { .. })
+        && let Some(last) = keep.to_mut().last_mut()
+    {
+        // The plots run up to the last step the guard passed, whatever the record rate.
+        *last = true;
+    }
+    let mut writer = Writer { chunks: Vec::new(), run, keep: &keep };
+    writer.plots(&pairs)?;
+    let note = run.series.layout.as_ref().map(|layout| writer.scene(layout, &pairs)).transpose()?;
+    writer.events(&pairs, note)?;
+    if let Ending::Finished(summary) = run.ending {
+        let text = serde_json::to_string_pretty(summary).expect("a summary serializes");
+        writer.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
+    }
+    Ok(writer.chunks)
+}
+
+/// A contact pair's label (`arm–<pad>`) and impacts: the summary's, or for a diverged run those
+/// of its force series so far.
+type Pair = (String, Vec<Impact>);
+
+fn pairs(run: &Recorded) -> Vec<Pair> {
+    match run.ending {
+        Ending::Finished(summary) => summary.pairs.iter().map(|p| (p.pair.clone(), p.impacts.clone())).collect(),
+        Ending::Diverged { .. } => run
+            .pad_names
+            .iter()
+            .zip(&run.series.pad_force_n)
+            .map(|(name, forces)| {
+                let mut tracker = ImpactTracker::default();
+                run.series.t_s.iter().zip(forces).for_each(|(t, f)| tracker.push(*t, *f));
+                (format!("arm–{name}"), tracker.impacts())
+            })
+            .collect(),
+    }
+}
+
+struct Writer<'a> {
+    chunks: Vec<Chunk>,
+    run: &'a Recorded<'a>,
+    /// Steps the plots keep.
+    keep: &'a [bool],
+}
+
+impl Writer<'_> {
+    /// Columns of `entity` at the times of `index` (what `RecordingStream::send_columns` sends).
+    fn send_columns(
+        &mut self,
+        entity: &str,
+        index: TimeColumn,
+        columns: impl IntoIterator<Item = SerializedComponentColumn>,
+    ) -> RecordingStreamResult<()> {
+        let indexes = std::iter::once((*index.timeline().name(), index)).collect();
+        let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
+        self.chunks.push(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
+        Ok(())
+    }
+
+    /// A static archetype of `entity`.
+    fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RecordingStreamResult<()> {
+        self.chunks.push(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
+        Ok(())
+    }
+
+    /// The kept steps of `values`.
+    fn kept<T: Copy>(&self, values: impl IntoIterator<Item = T>) -> Vec<T> {
+        values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
+    }
+
+    fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
+        let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
+        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
+        self.send_columns(entity, times, columns)
+    }
+
+    /// A pad's force at the kept steps with each impact's interpolated peak inserted at its
+    /// time, so the plotted series peaks at the reported peak.
+    fn send_force(&mut self, entity: &str, forces: &[f64], impacts: &[Impact]) -> RecordingStreamResult<()> {
+        let mut rows: Vec<(f64, f64)> = self.kept(self.run.series.t_s.iter().copied().zip(forces.iter().copied()));
+        let peaks = impacts.iter().map(|i| (i.peak_time_s, i.peak_force_n));
+        for (t, f) in peaks.filter(|p| p.0.is_finite()) {
+            let at = rows.partition_point(|r| r.0 < t);
+            if rows.get(at).is_none_or(|r| r.0 != t) {
+                rows.insert(at, (t, f));
+            }
+        }
+        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|r| r.0));
+        let columns = rerun::Scalars::new(rows.iter().map(|r| r.1)).columns_of_unit_batches()?;
+        self.send_columns(entity, times, columns)
+    }
+
+    fn plots(&mut self, pairs: &[Pair]) -> RecordingStreamResult<()> {
+        let run = self.run;
+        let s = run.series;
+        for (k, axis) in ["axial", "transverse"].iter().enumerate() {
+            self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
+            self.send(&format!("plots/tip_velocity/{axis}"), s.tip_velocity_m_s.iter().map(|d| d[k]))?;
+        }
+        self.send("plots/hub/angle_deg", s.hub_angle_rad.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/hub/rate_deg_s", s.hub_rate_rad_s.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/hub/accel_deg_s2", s.hub_accel_rad_s2.iter().map(|a| a.to_degrees()))?;
+        self.send("plots/drive_torque", s.drive_torque_n_m.iter().copied())?;
+        for (k, name) in ["kinetic", "strain", "gravity"].iter().enumerate() {
+            self.send(&format!("plots/energy/{name}"), s.energies_j.iter().map(|e| e[k]))?;
+        }
+        for i in 0..s.modal_dofs {
+            self.send(&format!("plots/modal/q{}", i + 1), s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied())?;
+        }
+        if !s.string_slip_m.is_empty() {
+            self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
+        }
+        for (k, (name, forces)) in run.pad_names.iter().zip(&s.pad_force_n).enumerate() {
+            let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
+            self.send_force(&force_entity(name), forces, impacts)?;
+        }
+        Ok(())
+    }
+
+    /// The 3D scene; returns the note on its display scales for the events.
+    fn scene(&mut self, layout: &SceneLayout, pairs: &[Pair]) -> RecordingStreamResult<String> {
+        let run = self.run;
+        self.log_static("world", &rerun::ViewCoordinates::RIGHT_HAND_Y_UP())?;
+        // Sized to the arm (15 × 10 m for the 9 m arm), so a lab arm is not lost on a rig's floor.
+        let l = layout.length_m as f32;
+        let half = (5.0 / 3.0 * l, 0.05 / 9.0 * l, 5.0 / 9.0 * l);
+        self.log_static(
+            "world/ground",
+            &rerun::Boxes3D::from_centers_and_half_sizes([(0.0, -half.1, 0.0)], [half])
+                .with_colors([rerun::Color::from_rgb(90, 90, 90)]),
+        )?;
+        let max_deflection = run.series.tip_deflection_m.iter().map(|d| d[1].abs()).fold(0.0, f64::max);
+        let magnify = magnification(max_deflection, layout.length_m);
+        let peak = pairs.iter().flat_map(|p| &p.1).map(|i| i.peak_force_n).fold(0.0, f64::max);
+        let scale = arrow_scale_n_per_m(peak);
+        let centreline = format!("world/centreline_x{magnify:.0}");
+        let arrows = format!("world/contact_force_{scale:.0}N_per_m");
+        let note = format!(
+            "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
+        );
+        let frames = &run.series.frames;
+        let times = || TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
+        // One chunk per entity: shapes and poses go in the same columns (send_columns), not a
+        // log call per frame, nor a static chunk for the shapes beside the poses — rerun's cost
+        // is per chunk (encoding, footer manifest), the repeated half sizes are a few kB.
+        for (name, indices) in group_pieces(layout) {
+            let entity = format!("world/{name}");
+            let half_sizes = frames.iter().flat_map(|_| indices.iter().map(|&i| layout.pieces[i].1.map(|v| v as f32)));
+            let centers = frames.iter().flat_map(|f| indices.iter().map(|&i| vec3(f.pieces[i].translation)));
+            let quats = frames.iter().flat_map(|f| indices.iter().map(|&i| quat(f.pieces[i].rotation)));
+            let columns = rerun::Boxes3D::update_fields()
+                .with_half_sizes(half_sizes.collect::<Vec<_>>())
+                .with_centers(centers.collect::<Vec<_>>())
+                .with_quaternions(quats.collect::<Vec<_>>())
+                .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
+            self.send_columns(&entity, times(), columns)?;
+        }
+        let pads = || frames.iter().flat_map(|f| f.pads.iter().zip(&layout.pads));
+        let columns = rerun::Boxes3D::update_fields()
+            .with_half_sizes(pads().map(|(_, p)| p.1.map(|v| v as f32)).collect::<Vec<_>>())
+            .with_labels(pads().map(|(_, p)| p.0.clone()).collect::<Vec<_>>())
+            .with_colors(pads().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
+            .with_centers(pads().map(|(pose, _)| vec3(pose.translation)).collect::<Vec<_>>())
+            .with_quaternions(pads().map(|(pose, _)| quat(pose.rotation)).collect::<Vec<_>>())
+            .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))?;
+        // The fill mode is one value per row, not per box: its own partition, the same chunk.
+        let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
+        let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
+        self.send_columns("world/pads", times(), columns.chain(fill))?;
+        let magnified = frames.iter().map(|f| centreline_points(layout, f, magnify));
+        let columns = rerun::LineStrips3D::update_fields()
+            .with_strips(magnified.collect::<Vec<_>>())
+            .columns(std::iter::repeat_n(1, frames.len()))?;
+        self.send_columns(&centreline, times(), columns)?;
+        let origins: Vec<[f32; 3]> =
+            frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
+        let vectors: Vec<[f32; 3]> = frames
+            .iter()
+            .flat_map(|f| f.contacts.iter().map(|c| [(c.2[0] / scale) as f32, (c.2[1] / scale) as f32, 0.0]))
+            .collect();
+        let red = std::iter::repeat_n(rerun::Color::from_rgb(220, 40, 40), origins.len()).collect::<Vec<_>>();
+        let columns = rerun::Arrows3D::update_fields()
+            .with_colors(red)
+            .with_origins(origins)
+            .with_vectors(vectors)
+            .columns(frames.iter().map(|f| f.contacts.len()))?;
+        self.send_columns(&arrows, times(), columns)?;
+        Ok(note)
+    }
+
+    /// The events at their times: impacts, warnings, the model, the display `note`; for a
+    /// diverged run, the guard's message last. (Not static: a static text log on `events` would
+    /// shadow every timed one in the viewer.)
+    fn events(&mut self, pairs: &[Pair], note: Option<String>) -> RecordingStreamResult<()> {
+        let mut events: Vec<(f64, String, &str)> = Vec::new();
+        for (pair, impacts) in pairs {
+            for (k, i) in impacts.iter().enumerate() {
+                let n = k + 1;
+                events.push((i.start_s, format!("{pair}: impact {n} starts"), TextLogLevel::INFO));
+                let peak = format!("{pair}: impact {n} peak {:.1} N", i.peak_force_n);
+                events.push((i.peak_time_s, peak, TextLogLevel::INFO));
+                let end = format!(
+                    "{pair}: impact {n} ends after {:.1} ms, impulse {:.3} N·s",
+                    1e3 * i.duration_s(),
+                    i.impulse_n_s
+                );
+                events.push((i.end_s, end, TextLogLevel::INFO));
+            }
+        }
+        if let Ending::Finished(summary) = self.run.ending {
+            events.extend(findings(summary));
+        }
+        events.extend(note.map(|note| (0.0, note, TextLogLevel::INFO)));
+        events.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if let Ending::Diverged { t_s, message, .. } = self.run.ending {
+            events.push((t_s, message.to_string(), TextLogLevel::ERROR));
+        }
+        // One chunk: a row per event at its time on `sim_time` (nanoseconds, as `TimeColumn` rounds).
+        let chunk = events
+            .into_iter()
+            .fold(Chunk::builder("events"), |chunk, (t, message, level)| {
+                let time = rerun::TimePoint::from([(rerun::Timeline::new_duration("sim_time"), nanos(t))]);
+                chunk.with_archetype(RowId::new(), time, &rerun::TextLog::new(message).with_level(level))
+            })
+            .build()?;
+        self.chunks.push(chunk);
+        Ok(())
+    }
+}
+
+/// The summary's warnings and its model, as events.
+fn findings(summary: &crate::run::RunSummary) -> Vec<(f64, String, &'static str)> {
+    let mut events = Vec::new();
+    if let Some(slip) = &summary.string_slip
+        && slip.max_slip_m > 1e-3
+    {
+        let message = format!("the string slipped {:.1} mm in the jaws", 1e3 * slip.max_slip_m);
+        events.push((summary.simulated_s, message, TextLogLevel::WARN));
+    }
+    let limit = summary.stability_limit_omega_dt;
+    if let Some(limit) = limit.filter(|l| summary.highest_omega_dt > 0.8 * l) {
+        let message = format!(
+            "near instability: ω_max·dt = {:.3} against the explicit integrator's limit {limit:.3}",
+            summary.highest_omega_dt
+        );
+        events.push((0.0, message, TextLogLevel::WARN));
+    }
+    if summary.static_w_over_l > 1.0 / 250.0 {
+        let message = format!("static w/l {:.5}: {}", summary.static_w_over_l, summary.stiffness_class);
+        events.push((0.0, message, TextLogLevel::WARN));
+    }
+    events.push((0.0, format!("model {}: {}", summary.model, summary.stiffness_class), TextLogLevel::INFO));
+    events
+}
+
+/// Piece indices grouped by name, in first-seen order (all elements of the arm in one entity).
+fn group_pieces(layout: &SceneLayout) -> Vec<(String, Vec<usize>)> {
+    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
+    for (i, (name, _)) in layout.pieces.iter().enumerate() {
+        match groups.iter_mut().find(|g| &g.0 == name) {
+            Some(g) => g.1.push(i),
+            None => groups.push((name.clone(), vec![i])),
+        }
+    }
+    groups
+}
+
+fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[f32; 3]> {
+    let (s, c) = frame.hub_angle_rad.sin_cos();
+    let p = layout.pivot_m;
+    frame
+        .centreline
+        .iter()
+        .map(|(x, [u, v])| {
+            let (bx, by) = (x + magnify * u, magnify * v);
+            [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
+        })
+        .collect()
+}
+
+/// Seconds to the nanoseconds of a duration timeline, rounded as `TimeColumn::new_duration_secs` does.
+fn nanos(t_s: f64) -> rerun::TimeCell {
+    rerun::TimeCell::from_duration_nanos((1e9 * t_s).round() as i64)
+}
+
+fn vec3(v: rapier3d_f64::math::Vector) -> [f32; 3] {
+    [v.x as f32, v.y as f32, v.z as f32]
+}
+
+fn quat(q: rapier3d_f64::math::Rotation) -> rerun::Quaternion {
+    rerun::Quaternion::from_xyzw([q.x as f32, q.y as f32, q.z as f32, q.w as f32])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_scales_are_powers_of_ten() {
+        // 18 mm on a 9 m arm: ×10 shows 180 mm, 2 % of the length.
+        assert_eq!(magnification(0.018, 9.0), 10.0);
+        assert_eq!(magnification(1.0, 9.0), 1.0, "already visible: not shrunk");
+        assert_eq!(arrow_scale_n_per_m(1506.3), 1e4);
+        assert_eq!(arrow_scale_n_per_m(0.0), 1.0);
+    }
+}

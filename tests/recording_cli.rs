@@ -1,0 +1,103 @@
+//! `pipearm run`'s recordings as a user meets them: a run the guard stops leaves its recording up
+//! to the divergence and no summary; `--connect` and `--spawn` without a viewer fail at once,
+//! with the address or the executable they looked for.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+use std::time::{Duration, Instant};
+
+fn pipearm(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("pipearm runs")
+}
+
+fn scratch(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("pipearm-{tag}-{}", std::process::id()));
+    std::fs::remove_dir_all(&dir).ok();
+    dir
+}
+
+/// The texts of the recording store's `events`, in the order of the file.
+fn events(path: &Path) -> Vec<String> {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut texts = Vec::new();
+    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
+        let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
+        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+        if store.kind() != re_log_types::StoreKind::Recording || chunk.entity_path().to_string() != "/events" {
+            continue;
+        }
+        let text = chunk.component_descriptors().map(|d| d.component).find(|c| c.as_str() == "TextLog:text");
+        for batch in chunk.iter_slices::<String>(text.expect("a text column")) {
+            texts.extend(batch.iter().map(|s| s.to_string()));
+        }
+    }
+    texts
+}
+
+#[test]
+fn a_diverged_run_keeps_its_recording_up_to_the_divergence_and_writes_no_summary() {
+    let out = scratch("diverged");
+    // Eight modes at RK4's 3 ms step: ω_max·dt past RK4's limit (docs/performance.md).
+    let output = pipearm(&["run", "scenarios/default.toml", "--model", "modal:8", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success(), "the guard stops the run: {stderr}");
+    assert!(stderr.contains("diverged at t ="), "{stderr}");
+    let recording = out.join("default.diverged.rrd");
+    assert!(recording.exists(), "{recording:?}");
+    assert!(!out.join("default.summary.json").exists() && !out.join("default.rrd").exists());
+    let texts = events(&recording);
+    std::fs::remove_dir_all(&out).ok();
+    let last = texts.last().expect("events");
+    // The guard's message as the command printed it: its time, what grew, the advice.
+    let guard = stderr.lines().find(|l| l.contains("diverged at t =")).unwrap();
+    let what = guard.split("diverged at t = ").nth(1).unwrap().split(". Advice").next().unwrap();
+    assert!(last.contains(what), "last event {last:?} against the error {guard:?}");
+    assert!(last.contains("Advice:"), "{last}");
+}
+
+#[test]
+fn connect_to_a_closed_port_fails_at_once_naming_the_url() {
+    // A port just freed: nothing listens there.
+    let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+    let url = format!("rerun+http://127.0.0.1:{port}/proxy");
+    let started = Instant::now();
+    let output = pipearm(&["run", "--no-record", "--connect", &url]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(stderr.contains(&url) && stderr.contains("no rerun viewer"), "{stderr}");
+    assert!(started.elapsed() < Duration::from_secs(5), "{:?}", started.elapsed());
+}
+
+#[test]
+fn connect_takes_a_url_only() {
+    let output = pipearm(&["run", "--no-record", "--connect", "scenarios/default.toml"]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(stderr.contains("expected a URL such as rerun+http://127.0.0.1:9876/proxy"), "{stderr}");
+    let output = pipearm(&["run", "--connect", "--spawn"]);
+    assert!(String::from_utf8_lossy(&output.stderr).contains("cannot be used with"));
+}
+
+#[test]
+fn spawn_without_a_viewer_on_the_path_names_what_it_looked_for() {
+    if std::net::TcpStream::connect("127.0.0.1:9876").is_ok() {
+        // A viewer already listens on rerun's port: --spawn would stream to it.
+        return;
+    }
+    let empty = scratch("empty-path");
+    std::fs::create_dir_all(&empty).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(["run", "--no-record", "--spawn"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("PATH", &empty)
+        .output()
+        .unwrap();
+    std::fs::remove_dir_all(&empty).ok();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(stderr.contains("Rerun Viewer executable"), "{stderr}");
+}
