@@ -55,7 +55,7 @@ pub struct LmSolution {
 
 /// Minimises Σ rᵢ(p)² over `lower ≤ p ≤ upper` (every bound > 0) from `initial`.
 pub fn minimize<E>(
-    residuals: &mut dyn FnMut(&[f64]) -> Result<Vec<f64>, E>,
+    mut residuals: impl FnMut(&[f64]) -> Result<Vec<f64>, E>,
     initial: &[f64],
     bounds: &[(f64, f64)],
     options: &LmOptions,
@@ -131,7 +131,7 @@ pub fn minimize<E>(
 
 /// ∂r/∂u by forward differences, stepping inward at an upper bound.
 fn forward_differences<E>(
-    evaluate: &mut dyn FnMut(&DVector<f64>) -> Result<DVector<f64>, E>,
+    evaluate: &mut impl FnMut(&DVector<f64>) -> Result<DVector<f64>, E>,
     u: &DVector<f64>,
     r: &DVector<f64>,
     step: f64,
