@@ -69,8 +69,9 @@ pub struct ScenarioSpec {
     /// How contact forces are computed.
     #[serde(default)]
     pub contact: ContactOptions,
-    /// Overrides of the robot's arm (default: the URDF's).
-    #[serde(default)]
+    /// Overrides of the robot's arm (default: the URDF's). Left out of the canonical form when
+    /// empty, so that a sweep's case hashes do not change for scenarios without it.
+    #[serde(default, skip_serializing_if = "ArmOverrides::is_empty")]
     pub arm: ArmOverrides,
     /// Model fidelity (default `auto`: the cheapest the scene needs, [`crate::select`]).
     #[serde(default)]
@@ -91,7 +92,15 @@ pub struct ScenarioSpec {
 pub struct ArmOverrides {
     /// Modal damping ratio ζ per clamped mode, lowest first (the last applies to every higher
     /// mode); replaces the URDF's `damping_ratios`.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub damping_ratios: Option<Vec<f64>>,
+}
+
+impl ArmOverrides {
+    /// Whether it overrides nothing.
+    pub fn is_empty(&self) -> bool {
+        self.damping_ratios.is_none()
+    }
 }
 
 /// The model a scenario asks for.
