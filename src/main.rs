@@ -28,8 +28,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json and
-    /// print the summary.
+    /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json (and
+    /// with --csv the series as tables) and print the summary.
     Run {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
@@ -46,6 +46,10 @@ enum Command {
         /// Rate at which steps without contact are recorded, Hz (steps in contact always are).
         #[arg(long, default_value_t = 25.0)]
         record_rate: f64,
+        /// Also write the series as tables, CSV and Parquet: <out>/<name>.steps.* (every step)
+        /// and <out>/<name>.decimated.* (the recorded steps); docs/export.md.
+        #[arg(long)]
+        csv: bool,
     },
     /// Run scenarios and compare them with their regression baselines.
     Check {
@@ -135,7 +139,7 @@ fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
 fn main() -> Result<()> {
     exit_quietly_on_closed_pipe();
     match Cli::parse().command {
-        Command::Run { scenario, model, out, no_record, record_rate } => run_command(
+        Command::Run { scenario, model, out, no_record, record_rate, csv } => run_command(
             &scenario,
             RunOptions {
                 fidelity: model,
@@ -144,6 +148,7 @@ fn main() -> Result<()> {
                 ..RunOptions::default()
             },
             &out,
+            csv,
         ),
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
@@ -153,9 +158,12 @@ fn main() -> Result<()> {
     }
 }
 
-fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
+fn run_command(path: &Path, options: RunOptions, out: &Path, tables: bool) -> Result<()> {
     if !(options.record_rate_hz.is_finite() && options.record_rate_hz > 0.0) {
         bail!("--record-rate = {}: allowed a rate > 0 Hz", options.record_rate_hz);
+    }
+    if options.capture_frames || tables {
+        pipearm::export::check_folder(out).context("--out")?;
     }
     let started = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
@@ -179,11 +187,30 @@ fn run_command(path: &Path, options: RunOptions, out: &Path) -> Result<()> {
             json.display()
         );
     }
+    if tables {
+        write_tables(out, &model.name, &series, model)?;
+    }
     // In-process, one thread for the simulation: scenario read, model built, stepped, recorded.
     let total_s = started.elapsed().as_secs_f64();
     println!(
         "total               {total_s:.3} s from reading the scenario to the last file written ({:.0}x real time)",
         summary.simulated_s / total_s
+    );
+    Ok(())
+}
+
+/// `run --csv`: the run's series as CSV and Parquet tables in `out`.
+fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &pipearm::model::Model) -> Result<()> {
+    let started = std::time::Instant::now();
+    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let written = pipearm::export::write_tables(out, name, series, &pads)?;
+    let [steps, decimated] = written.rows;
+    let [csv, parquet] = written.bytes.map(|b| b as f64 / 1e6);
+    println!(
+        "wrote tables        {} ({steps} rows) and {} ({decimated} rows): CSV {csv:.2} MB, Parquet {parquet:.2} MB, {:.3} s",
+        out.join(format!("{name}.steps.{{csv,parquet}}")).display(),
+        out.join(format!("{name}.decimated.{{csv,parquet}}")).display(),
+        started.elapsed().as_secs_f64()
     );
     Ok(())
 }
