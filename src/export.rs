@@ -29,8 +29,9 @@
 //! Units are written in ASCII (`^`, `*`) so a column can be typed as a pandas key.
 //!
 //! CSV: RFC 4180 (comma separated, `.` decimal point, a header row, a name quoted if it holds a
-//! comma or a quote); floats in Rust's shortest form that reads back to the same `f64` (`{:?}`:
-//! positional between 1e-4 and 1e16, exponent outside, so a 1e-30 is not thirty zeros).
+//! comma or a quote); floats in the shortest text that reads back to the same `f64` (zmij's, as
+//! serde_json writes them: positional for everyday magnitudes, an exponent for the very small
+//! and large, so a 1e-30 is not thirty zeros; `NaN`, `inf`).
 //! Parquet: every column a required DOUBLE, byte-stream-split encoded and zstd compressed.
 //!
 //! Files are written under temporary names and renamed when all four are complete: an error
@@ -184,21 +185,22 @@ struct Staged {
 }
 
 impl Staged {
-    /// The `rate` table in format `extension`, created under its temporary name; listed in
-    /// `staged` before it is created, so the caller removes it on any error.
+    /// The `rate` table in format `extension`, created under its temporary name (returned with
+    /// the file, then its own name, which errors show); listed in `staged` before it is created,
+    /// so the caller removes it on any error.
     fn create(
         folder: &Path,
         name: &str,
         rate: Rate,
         extension: &str,
         staged: &mut Vec<Staged>,
-    ) -> Result<(File, PathBuf), ExportError> {
+    ) -> Result<(File, PathBuf, PathBuf), ExportError> {
         let path = table_path(folder, name, rate, extension);
         let file_name = path.file_name().unwrap_or_default().to_string_lossy();
         let tmp = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
-        staged.push(Staged { tmp: tmp.clone(), path });
-        let file = File::create(&tmp).map_err(|source| ExportError::Io { path: tmp.clone(), source })?;
-        Ok((file, tmp))
+        staged.push(Staged { tmp: tmp.clone(), path: path.clone() });
+        let file = File::create(&tmp).map_err(|source| ExportError::Io { path: path.clone(), source })?;
+        Ok((file, tmp, path))
     }
 }
 
@@ -215,11 +217,11 @@ fn stage(
     for (r, rate) in Rate::ALL.into_iter().enumerate() {
         let table = columns(series, pad_names, rate)?;
         written.rows[r] = table.first().map_or(0, |c| c.values.len());
-        let (file, tmp) = Staged::create(folder, name, rate, "csv", staged)?;
-        write_csv(BufWriter::new(file), &table).map_err(|source| ExportError::Io { path: tmp.clone(), source })?;
+        let (file, tmp, path) = Staged::create(folder, name, rate, "csv", staged)?;
+        write_csv(BufWriter::new(file), &table).map_err(|source| ExportError::Io { path, source })?;
         written.bytes[0] += size(&tmp);
-        let (file, tmp) = Staged::create(folder, name, rate, "parquet", staged)?;
-        write_parquet(file, table).map_err(|source| ExportError::Parquet { path: tmp.clone(), source })?;
+        let (file, tmp, path) = Staged::create(folder, name, rate, "parquet", staged)?;
+        write_parquet(file, table).map_err(|source| ExportError::Parquet { path, source })?;
         written.bytes[1] += size(&tmp);
     }
     written.paths = staged.iter().map(|s| s.path.clone()).collect();
@@ -246,12 +248,15 @@ fn write_csv(mut out: impl Write, table: &[Column]) -> std::io::Result<()> {
     let header: Vec<String> = table.iter().map(|c| csv_field(&c.header)).collect();
     writeln!(out, "{}", header.join(","))?;
     let rows = table.first().map_or(0, |c| c.values.len());
+    let mut text = zmij::Buffer::new();
     for row in 0..rows {
         for (k, column) in table.iter().enumerate() {
-            let separator = if k == 0 { "" } else { "," };
-            write!(out, "{separator}{:?}", column.values[row])?;
+            if k > 0 {
+                out.write_all(b",")?;
+            }
+            out.write_all(text.format(column.values[row]).as_bytes())?;
         }
-        writeln!(out)?;
+        out.write_all(b"\n")?;
     }
     out.flush()
 }
@@ -291,7 +296,21 @@ mod tests {
 
     #[test]
     fn the_csv_float_form_reads_back_to_the_same_bits() {
-        let values = [0.0, -0.0, 1.0, 0.1, 1e-30, -3.5e-5, 1e16, 123456.789, f64::MIN_POSITIVE, f64::MAX, 2.0 / 3.0];
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            0.1,
+            1e-30,
+            -3.5e-5,
+            1e16,
+            123456.789,
+            f64::MIN_POSITIVE,
+            f64::MAX,
+            2.0 / 3.0,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
         let mut text = Vec::new();
         write_csv(&mut text, &[Column { header: "x[m]".into(), values: values.to_vec() }]).unwrap();
         let text = String::from_utf8(text).unwrap();

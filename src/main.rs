@@ -40,7 +40,7 @@ enum Command {
         /// Folder for the recording and the summary.
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
-        /// Print the summary only; write nothing.
+        /// Print the summary only; write nothing (with --csv, only the tables).
         #[arg(long)]
         no_record: bool,
         /// Rate at which steps without contact are recorded, Hz (steps in contact always are).

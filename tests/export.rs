@@ -204,7 +204,10 @@ fn run_csv_on_the_command_line() {
     let mut left: Vec<String> =
         std::fs::read_dir(&out).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
     left.sort();
-    assert_eq!(left, ["default.decimated.csv", "default.decimated.parquet", "default.steps.csv", "default.steps.parquet"]);
+    assert_eq!(
+        left,
+        ["default.decimated.csv", "default.decimated.parquet", "default.steps.csv", "default.steps.parquet"]
+    );
     std::fs::remove_dir_all(&out).ok();
 
     std::fs::create_dir_all(&out).unwrap();
