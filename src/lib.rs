@@ -4,7 +4,7 @@
 //! Data flows one way: a [`scenario`] file (with its [`robot`]) is checked and resolved once into a
 //! [`model`] of the machine and scene → the arm ([`beam`] reduced by [`arm`], at the fidelity
 //! [`select`] picks) → the step loop of a [`scene`] ([`integrate`], driven by [`drive`], with
-//! [`contact`] laws) → [`run`] series → ([`record`], [`analysis`]) → summary. No module below
+//! [`contact`] laws) → [`run`] series → ([`record`], [`export`], [`analysis`]) → summary. No module below
 //! [`scenario`] imports it. Physics functions are pure and in SI units; the conventions are stated
 //! in each module.
 
@@ -14,6 +14,7 @@ pub mod beam;
 pub mod bench;
 pub mod contact;
 pub mod drive;
+pub mod export;
 pub mod fit;
 pub mod guard;
 pub mod integrate;

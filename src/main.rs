@@ -29,9 +29,9 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json and
-    /// print the summary. A run the divergence guard stops writes recordings/<name>.diverged.rrd,
-    /// up to the divergence, and no summary.
+    /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json (and
+    /// with --csv the series as tables) and print the summary. A run the divergence guard stops
+    /// writes recordings/<name>.diverged.rrd, up to the divergence, and no summary.
     Run {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
@@ -42,7 +42,7 @@ enum Command {
         /// Folder for the recording and the summary.
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
-        /// Print the summary only; write no file.
+        /// Print the summary only; write nothing (with --csv, only the tables).
         #[arg(long)]
         no_record: bool,
         /// Rate at which steps without contact are recorded, Hz (steps in contact always are).
@@ -57,6 +57,10 @@ enum Command {
         /// already listening on rerun's default port).
         #[arg(long)]
         spawn: bool,
+        /// Also write the series as tables, CSV and Parquet: <out>/<name>.steps.* (every step)
+        /// and <out>/<name>.decimated.* (the recorded steps); docs/export.md.
+        #[arg(long)]
+        csv: bool,
     },
     /// Run scenarios and compare them with their regression baselines.
     Check {
@@ -158,7 +162,7 @@ fn parse_viewer_url(s: &str) -> Result<String, String> {
 fn main() -> Result<()> {
     exit_quietly_on_closed_pipe();
     match Cli::parse().command {
-        Command::Run { scenario, model, out, no_record, record_rate, connect, spawn } => {
+        Command::Run { scenario, model, out, no_record, record_rate, connect, spawn, csv } => {
             let viewer = match (connect, spawn) {
                 (Some(url), _) => Some(Viewer::Connect(url)),
                 (None, true) => Some(Viewer::Spawn),
@@ -170,7 +174,9 @@ fn main() -> Result<()> {
                 capture_frames: !no_record || viewer.is_some(),
                 ..RunOptions::default()
             };
-            run_command(&scenario, options, Outputs { files: (!no_record).then_some(out.as_path()), viewer })
+            let outputs =
+                Outputs { files: (!no_record).then_some(out.as_path()), tables: csv.then_some(out.as_path()), viewer };
+            run_command(&scenario, options, outputs)
         }
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
@@ -184,6 +190,8 @@ fn main() -> Result<()> {
 struct Outputs<'a> {
     /// The folder for `<name>.rrd` and `<name>.summary.json` (none with --no-record).
     files: Option<&'a Path>,
+    /// The folder for the series as tables (with --csv).
+    tables: Option<&'a Path>,
     /// A viewer to stream the run to.
     viewer: Option<Viewer>,
 }
@@ -191,6 +199,9 @@ struct Outputs<'a> {
 fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()> {
     if !(options.record_rate_hz.is_finite() && options.record_rate_hz > 0.0) {
         bail!("--record-rate = {}: allowed a rate > 0 Hz", options.record_rate_hz);
+    }
+    if let Some(out) = outputs.files.or(outputs.tables) {
+        pipearm::export::check_folder(out).context("--out")?;
     }
     let started = std::time::Instant::now();
     let scenario = Scenario::load(path)?;
@@ -230,6 +241,9 @@ fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()>
             .or_else(|e| if e.kind() == std::io::ErrorKind::NotFound { Ok(()) } else { Err(e) })
             .with_context(|| format!("removing {}", stale.display()))?;
     }
+    if let Some(out) = outputs.tables {
+        write_tables(out, &model.name, &series, model)?;
+    }
     // In-process, one thread for the simulation: scenario read, model built, stepped, recorded.
     let total_s = started.elapsed().as_secs_f64();
     println!(
@@ -264,6 +278,22 @@ fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded) {
             Err(e) => eprintln!("{e}"),
         }
     }
+}
+
+/// `run --csv`: the run's series as CSV and Parquet tables in `out`.
+fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &pipearm::model::Model) -> Result<()> {
+    let started = std::time::Instant::now();
+    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let written = pipearm::export::write_tables(out, name, series, &pads)?;
+    let [steps, decimated] = written.rows;
+    let [csv, parquet] = written.bytes.map(|b| b as f64 / 1e6);
+    println!(
+        "wrote tables        {} ({steps} rows) and {} ({decimated} rows): CSV {csv:.2} MB, Parquet {parquet:.2} MB, {:.3} s",
+        out.join(format!("{name}.steps.{{csv,parquet}}")).display(),
+        out.join(format!("{name}.decimated.{{csv,parquet}}")).display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
 }
 
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.

@@ -315,10 +315,10 @@ impl Check<'_> {
             return Err(self.invalid("arm.damping_ratios", "empty: allowed one or more ratios 0 <= ratio < 2"));
         }
         match ratios.iter().position(|z| !(0.0..2.0).contains(z)) {
-            Some(i) => Err(self.invalid(
-                &format!("arm.damping_ratios[{i}]"),
-                format!("{} is outside 0 <= ratio < 2", ratios[i]),
-            )),
+            Some(i) => {
+                Err(self
+                    .invalid(&format!("arm.damping_ratios[{i}]"), format!("{} is outside 0 <= ratio < 2", ratios[i])))
+            }
             None => Ok(ratios.to_vec()),
         }
     }

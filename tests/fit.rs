@@ -79,7 +79,9 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
 #[test]
 fn a_key_that_cannot_be_fitted_is_refused_with_what_can() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
-    let Err(e) = Problem::new(&path, &["time.step_s".to_string()], settings()) else { panic!("time.step_s was accepted") };
+    let Err(e) = Problem::new(&path, &["time.step_s".to_string()], settings()) else {
+        panic!("time.step_s was accepted")
+    };
     let message = e.to_string();
     assert!(message.contains("time.step_s") && message.contains("dampeners.N.law.stiffness"), "{message}");
     let Err(e) = Problem::new(&path, &["dampeners.3.law.stiffness".to_string()], settings()) else { panic!() };

@@ -148,8 +148,10 @@ impl Problem {
         let parameters = keys
             .iter()
             .map(|key| {
-                let initial = get_number(&document, key)
-                    .ok_or_else(|| FitError::Key { key: key.clone(), message: "not a number in the scenario".into() })?;
+                let initial = get_number(&document, key).ok_or_else(|| FitError::Key {
+                    key: key.clone(),
+                    message: "not a number in the scenario".into(),
+                })?;
                 let bounds = bounds_of(key, initial).map_err(|message| FitError::Key { key: key.clone(), message })?;
                 Ok(Parameter { key: key.clone(), initial, bounds })
             })
@@ -183,7 +185,8 @@ impl Problem {
         if let Some(step_s) = self.settings.step_s {
             model.time.step_s = step_s;
         }
-        run(&model, self.settings.fidelity).map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
+        run(&model, self.settings.fidelity)
+            .map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
     }
 }
 
