@@ -41,12 +41,13 @@ fn measurements_at(path: &Path, fidelity: Fidelity, step_s: f64) -> Vec<Signal> 
     *stiffness = TRUE_STIFFNESS;
     truth.integrator = IntegratorKind::default();
     truth.time.step_s = step_s;
-    let (summary, series) = run(&truth, Some(fidelity)).unwrap();
+    let (_, series) = run(&truth, Some(fidelity)).unwrap();
     let mut seed = 7;
-    ["tip_deflection", "contact_force_arm–vertical_stop"]
+    let pads = ["vertical_stop".to_string()];
+    ["tip_deflection_transverse", "contact_force_arm-vertical_stop"]
         .into_iter()
         .map(|name| {
-            let values = simulated(name, &summary, &series).unwrap();
+            let (_, values) = simulated(name, &series, &pads).unwrap();
             let peak = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let kept: Vec<usize> = (0..series.t_s.len()).step_by(6).collect();
             Signal {

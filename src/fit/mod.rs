@@ -94,20 +94,15 @@ pub struct Signal {
     pub values: Vec<f64>,
 }
 
-/// The simulated signal `name` of a run at each step, if the run has it: `tip_deflection`
-/// (transverse, in the hub frame, m), `contact_force_arm–<pad>` (N), `hub_angle` (rad),
-/// `drive_torque` (N·m).
-pub fn simulated(name: &str, summary: &RunSummary, series: &Series) -> Option<Vec<f64>> {
-    match name {
-        "tip_deflection" => Some(series.tip_deflection_m.iter().map(|d| d[1]).collect()),
-        "hub_angle" => Some(series.hub_angle_rad.clone()),
-        "drive_torque" => Some(series.drive_torque_n_m.clone()),
-        _ => {
-            let pair = name.strip_prefix("contact_force_")?;
-            let i = summary.pairs.iter().position(|p| p.pair == pair)?;
-            series.pad_force_n.get(i).cloned()
-        }
-    }
+/// The simulated signal `name` of a run at each step, if the run has it: a column of the
+/// run's tables (`pipearm run --csv`, [`crate::export`]) named without its unit, e.g.
+/// `tip_deflection_transverse`, `contact_force_arm-<pad>`, `hub_angle`; with its unit.
+pub fn simulated(name: &str, series: &Series, pad_names: &[String]) -> Option<(String, Vec<f64>)> {
+    let columns = crate::export::columns(series, pad_names, crate::export::Rate::Steps).ok()?;
+    columns.into_iter().find_map(|c| {
+        let (column, unit) = c.header.strip_suffix(']')?.split_once('[')?;
+        (column == name).then(|| (unit.to_string(), c.values))
+    })
 }
 
 /// How the fit runs the scenario: its own fidelity and step unless set.
@@ -127,6 +122,7 @@ pub struct Problem {
     document: toml::Value,
     robot: Robot,
     settings: RunSettings,
+    pad_names: Vec<String>,
     /// The parameters, in `--params` order.
     pub parameters: Vec<Parameter>,
 }
@@ -156,7 +152,8 @@ impl Problem {
                 Ok(Parameter { key: key.clone(), initial, bounds })
             })
             .collect::<Result<Vec<_>, FitError>>()?;
-        Ok(Problem { path: path.into(), document, robot: scenario.model.robot, settings, parameters })
+        let pad_names = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+        Ok(Problem { path: path.into(), document, robot: scenario.model.robot, settings, pad_names, parameters })
     }
 
     /// The scenario file's text with the parameters at `values`.
@@ -253,22 +250,23 @@ pub struct FitReport {
 pub fn fit(problem: &Problem, signals: &[Signal], options: &lm::LmOptions) -> Result<FitReport, FitError> {
     let initial: Vec<f64> = problem.parameters.iter().map(|p| p.initial).collect();
     let bounds: Vec<(f64, f64)> = problem.parameters.iter().map(|p| p.bounds).collect();
-    let (summary, series) = problem.run_at(&initial)?;
-    let mut shift_s = alignment_shift(signals, &summary, &series)?;
-    let start_ssr = residuals(signals, &summary, &series, shift_s)?.iter().map(|r| r * r).sum::<f64>();
+    let pads = &problem.pad_names;
+    let (_, series) = problem.run_at(&initial)?;
+    let mut shift_s = alignment_shift(signals, &series, pads)?;
+    let start_ssr = residuals(signals, &series, pads, shift_s)?.iter().map(|r| r * r).sum::<f64>();
     let (mut values, mut evaluations) = (initial.clone(), 1);
     // The shift found with the scenario's values is biased by their error: fit, re-align with the
     // fitted values, and fit again until the shift holds to a tenth of a sample.
     let resolution = sample_interval_s(signals) / 10.0;
     let solution = loop {
         let mut objective = |values: &[f64]| {
-            let (summary, series) = problem.run_at(values)?;
-            residuals(signals, &summary, &series, shift_s)
+            let (_, series) = problem.run_at(values)?;
+            residuals(signals, &series, pads, shift_s)
         };
         let solution = lm::minimize(&mut objective, &values, &bounds, options)?;
-        let (summary, series) = problem.run_at(&solution.parameters)?;
+        let (_, series) = problem.run_at(&solution.parameters)?;
         evaluations += solution.evaluations + 1;
-        let aligned = alignment_shift(signals, &summary, &series)?;
+        let aligned = alignment_shift(signals, &series, pads)?;
         let settled = (aligned - shift_s).abs() <= resolution;
         values.clone_from(&solution.parameters);
         shift_s = aligned;
@@ -318,10 +316,10 @@ fn resample(t_sim: &[f64], values: &[f64], t_s: &[f64]) -> Vec<f64> {
 }
 
 /// Every signal's residuals at its times shifted by `shift_s`, over its measured peak.
-fn residuals(signals: &[Signal], summary: &RunSummary, series: &Series, shift_s: f64) -> Result<Vec<f64>, FitError> {
+fn residuals(signals: &[Signal], series: &Series, pads: &[String], shift_s: f64) -> Result<Vec<f64>, FitError> {
     let mut out = Vec::new();
     for signal in signals {
-        let values = simulated(&signal.name, summary, series).ok_or_else(|| FitError::Signal(signal.name.clone()))?;
+        let (_, values) = simulated(&signal.name, series, pads).ok_or_else(|| FitError::Signal(signal.name.clone()))?;
         let times: Vec<f64> = signal.t_s.iter().map(|t| t + shift_s).collect();
         let sim = resample(&series.t_s, &values, &times);
         let peak = signal.values.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(1e-300);
@@ -342,12 +340,12 @@ fn sample_interval_s(signals: &[Signal]) -> f64 {
 /// squared difference (the cross-correlation's peak, for signals of equal energy) over shifts of
 /// whole samples within a tenth of the record, refined by a parabola through the best and its
 /// neighbours.
-fn alignment_shift(signals: &[Signal], summary: &RunSummary, series: &Series) -> Result<f64, FitError> {
+fn alignment_shift(signals: &[Signal], series: &Series, pads: &[String]) -> Result<f64, FitError> {
     let Some(first) = signals.first().filter(|s| s.t_s.len() >= 2) else { return Ok(0.0) };
     let dt = sample_interval_s(signals);
     let reach = (first.t_s.len() / 10) as i64;
     let score = |k: i64| -> Result<f64, FitError> {
-        let r = residuals(signals, summary, series, k as f64 * dt)?;
+        let r = residuals(signals, series, pads, k as f64 * dt)?;
         Ok(-r.iter().map(|x| x * x).sum::<f64>())
     };
     let mut best = (0, score(0)?);
