@@ -490,7 +490,7 @@ fn either(allowed: &str) -> DriveError {
 
 /// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
-    let DriveError::InvalidParameter { name, .. } = &e;
+    let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = &e;
     let key = name.replace("_rad", "_deg");
     let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
     ScenarioError::Invalid { path: path.into(), key: format!("drive.{key}"), message }
