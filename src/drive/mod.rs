@@ -44,6 +44,7 @@
 //! * `state`: the kinematic state and constant-jerk motion of it.
 //! * `sample`: the state of a profile at a time.
 //! * `table`: the clamped cubic spline through samples of angle against time.
+//! * `table_file`: a table drive's CSV file (`t[s],angle[deg]`) and its checks.
 //! * `breakpoints`: where a profile is not smooth.
 //! * `validate`: the checks on parameters and the error they raise.
 
@@ -53,6 +54,7 @@ mod s_curve;
 mod sample;
 mod state;
 mod table;
+mod table_file;
 #[cfg(test)]
 mod test_support;
 mod trapezoid;
@@ -62,5 +64,6 @@ pub use profile::MotionProfile;
 pub use s_curve::SCurveLimit;
 pub use state::DriveState;
 pub use table::MIN_TABLE_SAMPLES;
+pub use table_file::TableError;
 pub use trapezoid::TrapezoidLimit;
 pub use validate::DriveError;
