@@ -432,12 +432,12 @@ impl Check<'_> {
         }
         let (rate, velocity) = (motion.peak_rate_rad_s(), lift.velocity_rad_s);
         if rate > velocity * (1.0 + 1e-9) {
-            let key = if table { "drive.file" } else { "drive.duration_s" };
+            let (key, remedy) = if table { ("drive.file", "a slower table") } else { ("drive.duration_s", "a longer move") };
             return Err(self.invalid(
                 key,
                 format!(
                     "the drive's peak rate {:.3} deg/s exceeds the velocity limit of the lift joint `{}` \
-                     ({:.3} deg/s = {velocity} rad/s in {}): allowed a drive no faster",
+                     ({:.3} deg/s = {velocity} rad/s in {}): allowed a peak rate up to that ({remedy})",
                     deg(rate),
                     lift.name,
                     deg(velocity),
