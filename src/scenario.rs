@@ -432,7 +432,8 @@ impl Check<'_> {
         }
         let (rate, velocity) = (motion.peak_rate_rad_s(), lift.velocity_rad_s);
         if rate > velocity * (1.0 + 1e-9) {
-            let (key, remedy) = if table { ("drive.file", "a slower table") } else { ("drive.duration_s", "a longer move") };
+            let (key, remedy) =
+                if table { ("drive.file", "a slower table") } else { ("drive.duration_s", "a longer move") };
             return Err(self.invalid(
                 key,
                 format!(

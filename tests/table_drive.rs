@@ -89,6 +89,11 @@ fn the_spin_up_from_a_table_follows_the_closed_form_spin_up() {
     // The spline's rate is within h³/24 · max|θ''''| ≈ 3e-9 rad/s of the law's (which ends at w).
     assert!((motion.peak_rate_rad_s() - 6.0).abs() < 3e-9, "{}", motion.peak_rate_rad_s());
     assert!(rel(motion.peak_accel_rad_s2(), 0.8) < 1e-5, "{}", motion.peak_accel_rad_s2());
+    // The clamped spline's acceleration steps at its ends: the law starts and ends its ramp with
+    // zero acceleration, the spline within the same h² θ'''' of it.
+    let steps = [motion.sample(0.0).accel_rad_s2, motion.sample(15.0 - 1e-12).accel_rad_s2];
+    println!("spin-up table: acceleration steps at the ends {:.2e}, {:.2e} rad/s²", steps[0], steps[1]);
+    assert!(steps.iter().all(|a| a.abs() < 1e-5 * 0.8), "{steps:?}");
     let mut closed_form = table.model.clone();
     closed_form.drive.motion = MotionProfile::spin_up(0.0, 6.0, 15.0).unwrap();
     let (summary, series) = run(&table.model, None).unwrap();
@@ -133,11 +138,23 @@ fn bad_tables_name_the_column_and_the_row() {
             "# comment\nt[s],angle[deg]\n0,0\n0.2,1\n0.1,3\n0.3,4\n".into(),
             &["column `t[s]`, row 3 (line 5)", "`0.1`", "strictly increasing"],
         ),
-        ("nan", "t[s],angle[deg]\n0,0\n0.1,NaN\n0.2,3\n0.3,4\n".into(), &["column `angle[deg]`, row 2 (line 3)", "finite"]),
-        ("text", "angle[deg],t[s]\n0,0\n1,0.1\nabc,0.2\n4,0.3\n".into(), &["column `angle[deg]`, row 3 (line 4)", "`abc`"]),
+        (
+            "nan",
+            "t[s],angle[deg]\n0,0\n0.1,NaN\n0.2,3\n0.3,4\n".into(),
+            &["column `angle[deg]`, row 2 (line 3)", "finite"],
+        ),
+        (
+            "text",
+            "angle[deg],t[s]\n0,0\n1,0.1\nabc,0.2\n4,0.3\n".into(),
+            &["column `angle[deg]`, row 3 (line 4)", "`abc`"],
+        ),
         ("start", "t[s],angle[deg]\n0.5,0\n1,1\n2,3\n3,4\n".into(), &["column `t[s]`, row 1 (line 2)", "0 (the table"]),
         ("few", "t[s],angle[deg]\n0,0\n0.1,1\n0.2,2\n".into(), &["3 row(s)", "at least 4"]),
-        ("fields", "t[s],angle[deg]\n0,0\n0.1,1,7\n0.2,2\n0.3,3\n".into(), &["row 2 (line 3)", "3 field(s)", "allowed 2"]),
+        (
+            "fields",
+            "t[s],angle[deg]\n0,0\n0.1,1,7\n0.2,2\n0.3,3\n".into(),
+            &["row 2 (line 3)", "3 field(s)", "allowed 2"],
+        ),
         ("empty", "# nothing but a comment\n".into(), &["header", "none"]),
     ];
     for (tag, text, needles) in cases {
@@ -160,7 +177,9 @@ fn a_run_with_a_bad_table_writes_nothing() {
     std::fs::write(dir.join("bad.csv"), "t[s],angle[deg]\n0,0\n0.1,1\n0.1,2\n0.3,3\n").unwrap();
     let text = std::fs::read_to_string(manifest().join("scenarios/spin_up.toml")).unwrap();
     let robot = manifest().join("robots/spin_up_beam.urdf");
-    let text = text.replace("\"spin_up.csv\"", "\"bad.csv\"").replace("\"../robots/spin_up_beam.urdf\"", &format!("{robot:?}"));
+    let text = text
+        .replace("\"spin_up.csv\"", "\"bad.csv\"")
+        .replace("\"../robots/spin_up_beam.urdf\"", &format!("{robot:?}"));
     std::fs::write(dir.join("bad.toml"), text).unwrap();
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_pipearm"))
         .args(["run", dir.join("bad.toml").to_str().unwrap(), "--out", out.to_str().unwrap()])

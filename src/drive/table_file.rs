@@ -71,7 +71,8 @@ impl MotionProfile {
         let (header_line, header) =
             lines.next().ok_or_else(|| reader.invalid("header", format!("none: allowed a header `{TIME},{ANGLE}`")))?;
         let (time_col, angle_col) = reader.header(header_line, header)?;
-        let rows: Vec<Row> = lines.map(|(line, l)| Row { line, cells: l.split(',').map(str::trim).collect() }).collect();
+        let rows: Vec<Row> =
+            lines.map(|(line, l)| Row { line, cells: l.split(',').map(str::trim).collect() }).collect();
         if rows.len() < MIN_TABLE_SAMPLES {
             return Err(reader.invalid(
                 format!("after the header (line {header_line})"),
