@@ -536,6 +536,7 @@ fn print_summary(path: &Path, s: &RunSummary) {
     );
     println!("max tip deflection  {:.3} mm (w/l = 1/{:.0})", 1e3 * s.max_tip_deflection_m, 1.0 / s.max_w_over_l);
     println!("peak drive torque   {:.1} kN·m at {:.3} s", 1e-3 * s.peak_drive_torque_n_m, s.peak_drive_torque_time_s);
+    print_drive_limits(&s.drive, s.peak_drive_torque_n_m);
     let r = &s.residual;
     let frequency =
         if r.frequency_hz.is_finite() { format!("{:.3} Hz", r.frequency_hz) } else { "no oscillation".into() };
@@ -568,6 +569,22 @@ fn print_summary(path: &Path, s: &RunSummary) {
                 1e3 * i.duration_s()
             );
         }
+    }
+}
+
+/// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its
+/// effort (the run is not stopped: the drive is ideal, the URDF's effort is the real one's).
+fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
+    println!(
+        "drive               {}: peak rate {:.3} °/s (lift velocity limit {:.3}), peak accel {:.3} °/s²",
+        d.profile, d.peak_rate_deg_s, d.velocity_limit_deg_s, d.peak_accel_deg_s2
+    );
+    if !d.torque_within_effort {
+        println!(
+            "warning             the peak drive torque {:.1} kN·m exceeds the lift joint's effort {:.1} kN·m (URDF)",
+            1e-3 * peak_torque_n_m,
+            1e-3 * d.effort_n_m
+        );
     }
 }
 

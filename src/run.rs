@@ -168,6 +168,8 @@ pub struct RunSummary {
     pub peak_drive_torque_n_m: f64,
     /// Time of the peak drive torque, s.
     pub peak_drive_torque_time_s: f64,
+    /// The drive's peaks against the lift joint's URDF limits.
+    pub drive: DriveLimits,
     /// Residual tip vibration after the drive stops.
     pub residual: Residual,
     /// Contact pairs.
@@ -179,6 +181,40 @@ pub struct RunSummary {
     pub highest_omega_dt: f64,
     /// The integrator's stability limit on ω·dt (`None`: unconditionally stable; 0: none).
     pub stability_limit_omega_dt: Option<f64>,
+}
+
+/// A drive's peaks against the lift joint's URDF limits. The rate is known before the run and a
+/// scenario faster than the joint's velocity is refused ([`crate::scenario`]); the torque is
+/// known only after it, so a run beyond the joint's effort is flagged here, not stopped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DriveLimits {
+    /// The drive's profile (`uniform`, `trapezoidal`, `s-curve`, `hold`, `spin-up`, `table`).
+    pub profile: String,
+    /// Its peak rate, deg/s.
+    pub peak_rate_deg_s: f64,
+    /// Its peak acceleration, deg/s².
+    pub peak_accel_deg_s2: f64,
+    /// The lift joint's velocity limit (URDF `limit@velocity`), deg/s.
+    pub velocity_limit_deg_s: f64,
+    /// The lift joint's effort (URDF `limit@effort`), N·m.
+    pub effort_n_m: f64,
+    /// Whether the run's peak drive torque is within that effort.
+    pub torque_within_effort: bool,
+}
+
+impl DriveLimits {
+    /// `model`'s drive against its lift joint, with the run's peak drive torque (N·m).
+    pub fn of(model: &Model, peak_drive_torque_n_m: f64) -> Self {
+        let (motion, lift) = (&model.drive.motion, &model.robot.lift);
+        DriveLimits {
+            profile: motion.name().into(),
+            peak_rate_deg_s: motion.peak_rate_rad_s().to_degrees(),
+            peak_accel_deg_s2: motion.peak_accel_rad_s2().to_degrees(),
+            velocity_limit_deg_s: lift.velocity_rad_s.to_degrees(),
+            effort_n_m: lift.effort_n_m,
+            torque_within_effort: peak_drive_torque_n_m <= lift.effort_n_m,
+        }
+    }
 }
 
 /// Runs a model at `fidelity` (its own if `None`), capturing no frames.
@@ -435,6 +471,7 @@ fn summarize(
         max_w_over_l: max_tip_deflection_m / length,
         peak_drive_torque_n_m: peak_torque,
         peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
+        drive: DriveLimits::of(model, peak_torque),
         residual: residual(&deflection, model.drive_end_s()),
         pairs,
         highest_omega_dt: arm.highest_omega_rad_s * model.time.step_s,

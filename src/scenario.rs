@@ -4,7 +4,7 @@
 //!
 //! Units are SI and stated in the key names; drive angles are in degrees (`*_deg`, `*_deg_s2`)
 //! because that is how rig engineers state them, and are converted to radians here. Paths
-//! (`robot`) are relative to the scenario file.
+//! (`robot`, a table drive's `file`) are relative to the scenario file.
 
 use std::path::{Path, PathBuf};
 
@@ -14,7 +14,7 @@ use thiserror::Error;
 use crate::arm::Fidelity;
 use crate::beam::{BeamModel, ConcentratedMass};
 use crate::contact::ForceLaw;
-use crate::drive::{DriveError, MotionProfile, SCurveLimit, TrapezoidLimit};
+use crate::drive::{DriveError, MotionProfile, SCurveLimit, TableError, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
 use crate::model::{
     Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, HeldString, Model, Payload,
@@ -182,7 +182,7 @@ pub struct DampenerSpec {
 }
 
 /// Hub motion profiles; angles in degrees.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "profile", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum DriveSpec {
     /// Constant rate from start to end.
@@ -202,6 +202,10 @@ pub enum DriveSpec {
     },
     /// Hold still at an angle.
     Hold { angle_deg: f64 },
+    /// Through the rows of a CSV file of time and angle (header `t[s],angle[deg]`, relative to
+    /// the scenario file): the clamped cubic spline, at rest at the first row, at
+    /// `end_rate_deg_s` (default 0: at rest) at the last row and after it (docs/drive.md).
+    Table { file: PathBuf, end_rate_deg_s: Option<f64> },
 }
 
 /// A scenario file, checked and resolved: what it says, and the model of the machine and scene.
@@ -235,6 +239,11 @@ impl Scenario {
         path.parent().unwrap_or(Path::new(".")).join(&spec.robot)
     }
 
+    /// The table file of a table drive read from `path`, resolved against its folder.
+    pub fn table_path(path: &Path, file: &Path) -> PathBuf {
+        path.parent().unwrap_or(Path::new(".")).join(file)
+    }
+
     /// Reads and checks the robot `spec` names.
     pub fn load_robot(path: &Path, spec: &ScenarioSpec) -> Result<Robot, ScenarioError> {
         load_robot(&Self::robot_path(path, spec)).map_err(|source| ScenarioError::Robot { path: path.into(), source })
@@ -247,7 +256,7 @@ impl Scenario {
         if let Some(ratios) = &spec.arm.damping_ratios {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
         }
-        let motion = spec.drive.motion().map_err(|e| drive_error(path, e))?;
+        let motion = check.drive(&spec.drive)?;
         let payload = check.payload(&spec.payload, &robot)?;
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
@@ -421,19 +430,58 @@ impl Check<'_> {
         Ok(())
     }
 
-    fn drive_limits(&self, model: &Model) -> Result<(), ScenarioError> {
-        let (lo, hi) = model.robot.lift.limits_rad;
-        let motion = &model.drive.motion;
-        for (key, angle) in [("drive.start_deg", motion.start_rad()), ("drive.end_deg", motion.end_rad())] {
-            if !(lo - 1e-9..=hi + 1e-9).contains(&angle) {
-                let allowed = format!(
-                    "{:.3} is outside the lift joint's limits {:.3} ..= {:.3} deg",
-                    angle.to_degrees(),
-                    lo.to_degrees(),
-                    hi.to_degrees()
-                );
-                return Err(self.invalid(key, allowed));
+    /// The drive's profile; a table is read from its file, relative to the scenario.
+    fn drive(&self, drive: &DriveSpec) -> Result<MotionProfile, ScenarioError> {
+        match drive {
+            DriveSpec::Table { file, end_rate_deg_s } => {
+                let csv = Scenario::table_path(self.path, file);
+                MotionProfile::from_csv(&csv, end_rate_deg_s.unwrap_or(0.0).to_radians()).map_err(|e| match e {
+                    TableError::Drive { source, .. } => drive_error(self.path, source),
+                    other => self.invalid("drive.file", other.to_string()),
+                })
             }
+            law => law.motion().map_err(|e| drive_error(self.path, e)),
+        }
+    }
+
+    /// The drive against the lift joint's URDF limits: its angles within the joint's range over
+    /// the run, its peak rate within the joint's velocity (known before the run, so refused;
+    /// the torque is known only after it, and flagged in the run's summary).
+    fn drive_limits(&self, model: &Model) -> Result<(), ScenarioError> {
+        let lift = &model.robot.lift;
+        let (lo, hi) = lift.limits_rad;
+        let deg = f64::to_degrees;
+        let limits = format!("the lift joint's limits {:.3} ..= {:.3} deg", deg(lo), deg(hi));
+        let outside = |angle: f64| !(lo - 1e-9..=hi + 1e-9).contains(&angle);
+        let motion = &model.drive.motion;
+        let table = motion.name() == "table";
+        if table {
+            let (min, max) = motion.angle_range_rad(model.duration_s());
+            if outside(min) || outside(max) {
+                let span = format!("the table's spline spans {:.3} ..= {:.3} deg over the run", deg(min), deg(max));
+                return Err(self.invalid("drive.file", format!("{span}: allowed within {limits}")));
+            }
+        }
+        for (key, angle) in [("drive.start_deg", motion.start_rad()), ("drive.end_deg", motion.end_rad())] {
+            if !table && outside(angle) {
+                return Err(self.invalid(key, format!("{:.3} is outside {limits}", deg(angle))));
+            }
+        }
+        let (rate, velocity) = (motion.peak_rate_rad_s(), lift.velocity_rad_s);
+        if rate > velocity * (1.0 + 1e-9) {
+            let (key, remedy) =
+                if table { ("drive.file", "a slower table") } else { ("drive.duration_s", "a longer move") };
+            return Err(self.invalid(
+                key,
+                format!(
+                    "the drive's peak rate {:.3} deg/s exceeds the velocity limit of the lift joint `{}` \
+                     ({:.3} deg/s = {velocity} rad/s in {}): allowed a peak rate up to that ({remedy})",
+                    deg(rate),
+                    lift.name,
+                    deg(velocity),
+                    model.robot.source.display()
+                ),
+            ));
         }
         Ok(())
     }
@@ -485,7 +533,8 @@ impl Check<'_> {
 }
 
 impl DriveSpec {
-    /// The motion profile, in radians.
+    /// The motion profile of a built-in law, in radians. A table is read relative to its
+    /// scenario file ([`Scenario::load`], [`MotionProfile::from_csv`]); here it is an error.
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
         let r = f64::to_radians;
         match *self {
@@ -517,6 +566,11 @@ impl DriveSpec {
                 MotionProfile::s_curve(r(start_deg), r(end_deg), duration_s, limit)
             }
             DriveSpec::Hold { angle_deg } => Ok(MotionProfile::hold(r(angle_deg))),
+            DriveSpec::Table { .. } => Err(DriveError::InvalidParameter {
+                name: "file",
+                value: f64::NAN,
+                allowed: "a table read with its scenario (Scenario::load) or by MotionProfile::from_csv".into(),
+            }),
         }
     }
 }
@@ -527,7 +581,7 @@ fn either(allowed: &str) -> DriveError {
 
 /// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
-    let DriveError::InvalidParameter { name, .. } = &e;
+    let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = &e;
     let key = name.replace("_rad", "_deg");
     let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
     ScenarioError::Invalid { path: path.into(), key: format!("drive.{key}"), message }

@@ -30,7 +30,7 @@ fn robot_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn the_shipped_robots_load() {
-    for name in ["pipe_arm", "lab_arm1", "lab_arm2", "lab_arm3"] {
+    for name in ["pipe_arm", "lab_arm1", "lab_arm2", "lab_arm3", "spin_up_beam"] {
         let robot = load_robot(&manifest().join(format!("robots/{name}.urdf"))).unwrap();
         assert!(robot.arm.length_m() > 0.0);
     }
@@ -39,6 +39,8 @@ fn the_shipped_robots_load() {
     assert_eq!((hand.station_m, hand.mass_kg, hand.rotary_inertia_kg_m2), (8.2, 180.0, 15.0));
     let jaws: f64 = robot.carried.iter().filter(|b| b.name.starts_with("jaw")).map(|b| b.mass_kg).sum();
     assert_eq!(jaws, 24.0);
+    // The lift joint's limit, as the file states it: effort 400000 N·m, velocity 0.3 rad/s.
+    assert_eq!((robot.lift.effort_n_m, robot.lift.velocity_rad_s), (400000.0, 0.3));
 }
 
 #[test]
@@ -122,6 +124,16 @@ fn malformed_urdf_is_named() {
             "limits",
             Box::new(|t: String| t.replace("lower=\"-0.05\" upper=\"1.62\"", "lower=\"1.62\" upper=\"-0.05\"")),
             &["joint[lift].limit"],
+        ),
+        (
+            "velocity",
+            Box::new(|t: String| t.replace("effort=\"400000\" velocity=\"0.3\"", "effort=\"400000\" velocity=\"0\"")),
+            &["joint[lift].limit", "velocity = 0", "velocity > 0 (rad/s)"],
+        ),
+        (
+            "no-velocity",
+            Box::new(|t: String| t.replace("effort=\"400000\" velocity=\"0.3\"", "effort=\"400000\"")),
+            &["not valid URDF"],
         ),
     ];
     for (tag, edit, needles) in cases {

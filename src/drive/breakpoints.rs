@@ -19,12 +19,16 @@ impl MotionProfile {
     }
 
     /// Instants inside the motion where its acceleration or jerk jumps (the ends of its
-    /// constant-jerk pieces; the end of a spin-up's ramp), s, in order. A time step that
+    /// constant-jerk pieces — a table's samples; the end of a spin-up's ramp), s, in order. A time step that
     /// straddles one integrates across a kink of the load; fixed steps that divide the pieces land
     /// on them, a controlled step is cut to end there.
     pub fn breakpoints_s(&self) -> Vec<f64> {
+        if let Kind::Table { .. } = self.kind {
+            let inner = self.segments.iter().skip(1).map(|s| s.t0_s);
+            return inner.chain(std::iter::once(self.duration_s)).collect();
+        }
         let half = 0.5 * self.duration_s;
-        let inner: Vec<f64> = self.first_half.iter().map(|s| s.t0_s).filter(|&t| t > 0.0 && t < half).collect();
+        let inner: Vec<f64> = self.segments.iter().map(|s| s.t0_s).filter(|&t| t > 0.0 && t < half).collect();
         let mirrored = inner.iter().rev().map(|t| self.duration_s - t);
         let end = (self.duration_s > 0.0).then_some(self.duration_s);
         inner.iter().copied().chain(mirrored).chain(end).collect()

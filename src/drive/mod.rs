@@ -11,7 +11,8 @@
 //! * The motion starts at `t = 0`. Before `t = 0` every profile holds at `A`
 //!   at rest; from `t = T` on it holds at `B` at rest. The exception is the
 //!   spin-up profile, which keeps its final constant rate forever after its
-//!   ramp time.
+//!   ramp time, and a table given an end rate, which keeps it after its last
+//!   sample.
 //! * Where a quantity jumps, `sample` returns the value just *after* the
 //!   instant (right-continuous).
 //! * Moving down (`B < A`) is the exact mirror image of moving up.
@@ -25,6 +26,7 @@
 //! | `s-curve`     | angle, rate, accel            | jerk is piecewise constant and jumps at the 8 segment boundaries |
 //! | `spin-up`     | angle, rate, accel, jerk      | snap (d jerk/dt) jumps at 0 and the ramp time   |
 //! | `hold`        | everything (constant)         | nothing                                         |
+//! | `table`       | angle, rate; accel on `[0, T]` | accel steps from/to 0 at 0 and `T`; jerk is piecewise constant and jumps at the samples |
 //!
 //! # Implementation
 //!
@@ -41,6 +43,8 @@
 //! * `trapezoid`, `s_curve`: each limited profile's timing, solved from its limit.
 //! * `state`: the kinematic state and constant-jerk motion of it.
 //! * `sample`: the state of a profile at a time.
+//! * `table`: the clamped cubic spline through samples of angle against time.
+//! * `table_file`: a table drive's CSV file (`t[s],angle[deg]`) and its checks.
 //! * `breakpoints`: where a profile is not smooth.
 //! * `validate`: the checks on parameters and the error they raise.
 
@@ -49,6 +53,8 @@ mod profile;
 mod s_curve;
 mod sample;
 mod state;
+mod table;
+mod table_file;
 #[cfg(test)]
 mod test_support;
 mod trapezoid;
@@ -57,5 +63,7 @@ mod validate;
 pub use profile::MotionProfile;
 pub use s_curve::SCurveLimit;
 pub use state::DriveState;
+pub use table::MIN_TABLE_SAMPLES;
+pub use table_file::TableError;
 pub use trapezoid::TrapezoidLimit;
 pub use validate::DriveError;

@@ -1,11 +1,13 @@
 //! The kinds of [`MotionProfile`] and their constructors: each validates its inputs, solves its
-//! timing and stores the profile's first half as constant-jerk segments (see the module doc of
-//! [`crate::drive`] for the point symmetry that gives the second half).
+//! timing and stores the profile as constant-jerk segments — a symmetric profile's first half
+//! (see the module doc of [`crate::drive`] for the point symmetry that gives the second half), a
+//! table's whole span.
 
 use std::f64::consts::PI;
 
 use super::s_curve::{SCurveLimit, s_curve_shape};
 use super::state::{DriveState, Piece, Segment, chain};
+use super::table;
 use super::trapezoid::{TrapezoidLimit, trapezoid_shape};
 use super::validate::{DriveError, Move, invalid, require_finite, require_positive};
 
@@ -17,6 +19,7 @@ pub(super) enum Kind {
     SCurve,
     Hold,
     SpinUp { final_rate_rad_s: f64 },
+    Table { end_rate_rad_s: f64 },
 }
 
 /// Peak magnitudes of a profile (rad/s, rad/s², rad/s³).
@@ -37,8 +40,9 @@ pub struct MotionProfile {
     peak_rate_rad_s: f64,
     peak_accel_rad_s2: f64,
     peak_jerk_rad_s3: f64,
-    /// Constant-jerk segments covering `[0, T/2]` (symmetric profiles only).
-    pub(super) first_half: Vec<Segment>,
+    /// Constant-jerk segments: `[0, T/2]` of a symmetric profile, `[0, T]` of a table (empty
+    /// for hold and spin-up).
+    pub(super) segments: Vec<Segment>,
 }
 
 impl MotionProfile {
@@ -115,7 +119,7 @@ impl MotionProfile {
             peak_rate_rad_s: 0.0,
             peak_accel_rad_s2: 0.0,
             peak_jerk_rad_s3: 0.0,
-            first_half: Vec::new(),
+            segments: Vec::new(),
         }
     }
 
@@ -146,8 +150,51 @@ impl MotionProfile {
             peak_rate_rad_s: rate.abs(),
             peak_accel_rad_s2: peak_accel,
             peak_jerk_rad_s3: peak_jerk,
-            first_half: Vec::new(),
+            segments: Vec::new(),
         })
+    }
+
+    /// The clamped cubic spline through the samples `(times_s[i], angles_rad[i])` (s, rad): rate
+    /// 0 at the first sample (the hub rests before it), `end_rate_rad_s` (rad/s) at the last and
+    /// after it (0: the hub stops there). Angle, rate and acceleration are continuous on
+    /// `[0, T]`, the jerk is constant between samples; the acceleration steps from and to 0 at
+    /// the ends (see [`crate::drive`]'s `table` module for the choice of spline).
+    ///
+    /// # Errors
+    /// [`DriveError::InvalidSample`] naming the index of a time that is not finite, not
+    /// increasing or (the first) not 0, or of an angle that is not finite;
+    /// [`DriveError::InvalidParameter`] for fewer than 4 samples, unequal lengths, a non-finite
+    /// end rate, or samples so close and steep that the spline's peaks overflow.
+    pub fn table(times_s: &[f64], angles_rad: &[f64], end_rate_rad_s: f64) -> Result<Self, DriveError> {
+        table::check_samples(times_s, angles_rad)?;
+        let end_rate = table::end_rate(end_rate_rad_s)?;
+        let segments = table::clamped_spline(times_s, angles_rad, end_rate);
+        let duration_s = times_s[times_s.len() - 1];
+        let (rate, accel, jerk) = table::peaks(&segments, duration_s, end_rate);
+        if !(rate.is_finite() && accel.is_finite() && jerk.is_finite()) {
+            return Err(invalid("times_s", duration_s, "samples whose spline has a finite peak rate, accel and jerk"));
+        }
+        Ok(Self {
+            kind: Kind::Table { end_rate_rad_s: end_rate },
+            start_rad: angles_rad[0],
+            end_rad: angles_rad[angles_rad.len() - 1],
+            duration_s,
+            peak_rate_rad_s: rate,
+            peak_accel_rad_s2: accel,
+            peak_jerk_rad_s3: jerk,
+            segments,
+        })
+    }
+
+    /// Smallest and largest angle over `[0, t_end_s]`, rad: a table may overshoot its samples
+    /// between them; every other profile is monotone.
+    pub fn angle_range_rad(&self, t_end_s: f64) -> (f64, f64) {
+        let last = self.sample(t_end_s.max(0.0)).angle_rad;
+        let (lo, hi) = match self.kind {
+            Kind::Table { .. } => table::angle_range(&self.segments, self.duration_s.min(t_end_s.max(0.0))),
+            _ => (self.start_rad, self.start_rad),
+        };
+        (lo.min(self.start_rad).min(last), hi.max(self.start_rad).max(last))
     }
 
     /// Angle at `t = 0`, rad.
@@ -156,17 +203,19 @@ impl MotionProfile {
     }
 
     /// Angle at `t = duration_s()`, rad (for spin-up `A + w Ts/2`; for hold the
-    /// held angle).
+    /// held angle; for a table its last sample).
     pub fn end_rad(&self) -> f64 {
         self.end_rad
     }
 
-    /// Duration of the motion, s (ramp time for spin-up, 0 for hold).
+    /// Duration of the motion, s (ramp time for spin-up, 0 for hold, the last sample's time for
+    /// a table).
     pub fn duration_s(&self) -> f64 {
         self.duration_s
     }
 
-    /// Peak rate magnitude, rad/s (0 for hold, `|w|` for spin-up).
+    /// Peak rate magnitude, rad/s (0 for hold, `|w|` for spin-up; for a table exact over its
+    /// cubics and its end rate).
     pub fn peak_rate_rad_s(&self) -> f64 {
         self.peak_rate_rad_s
     }
@@ -179,13 +228,14 @@ impl MotionProfile {
 
     /// Peak jerk magnitude, rad/s³: finite for s-curve and spin-up,
     /// `f64::INFINITY` for trapezoidal (acceleration steps), 0 for uniform
-    /// and hold.
+    /// and hold; for a table the largest of its cubics' constant jerks (the
+    /// acceleration steps at its ends are not counted).
     pub fn peak_jerk_rad_s3(&self) -> f64 {
         self.peak_jerk_rad_s3
     }
 
-    /// Profile name: `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"` or
-    /// `"spin-up"`.
+    /// Profile name: `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`,
+    /// `"spin-up"` or `"table"`.
     pub fn name(&self) -> &'static str {
         match self.kind {
             Kind::Uniform => "uniform",
@@ -193,12 +243,13 @@ impl MotionProfile {
             Kind::SCurve => "s-curve",
             Kind::Hold => "hold",
             Kind::SpinUp { .. } => "spin-up",
+            Kind::Table { .. } => "table",
         }
     }
 
     /// Builds a symmetric profile and checks that its first half really
     /// reaches the midpoint angle (guards against degenerate extreme inputs).
-    fn assemble(kind: Kind, mv: &Move, peaks: Peaks, first_half: Vec<Segment>) -> Result<Self, DriveError> {
+    fn assemble(kind: Kind, mv: &Move, peaks: Peaks, segments: Vec<Segment>) -> Result<Self, DriveError> {
         let jerk_ok = peaks.jerk.is_finite() || kind == Kind::Trapezoidal;
         if !(peaks.rate.is_finite() && peaks.accel.is_finite() && jerk_ok) {
             return Err(invalid(
@@ -215,7 +266,7 @@ impl MotionProfile {
             peak_rate_rad_s: peaks.rate,
             peak_accel_rad_s2: peaks.accel,
             peak_jerk_rad_s3: peaks.jerk,
-            first_half,
+            segments,
         };
         profile.check_midpoint()?;
         Ok(profile)
@@ -224,7 +275,7 @@ impl MotionProfile {
     /// Verifies that the first half ends at `(A + B)/2` at `T/2`.
     fn check_midpoint(&self) -> Result<(), DriveError> {
         let mid = self.start_rad.midpoint(self.end_rad);
-        let reached = self.first_half_state(0.5 * self.duration_s, false).angle_rad;
+        let reached = self.segment_state(0.5 * self.duration_s, false).angle_rad;
         let tol = 1e-9 * (self.end_rad - self.start_rad).abs()
             + 8.0 * f64::EPSILON * (self.start_rad.abs() + self.end_rad.abs());
         if (reached - mid).abs() <= tol {
@@ -248,7 +299,7 @@ mod tests {
     fn err_name(result: Result<MotionProfile, DriveError>) -> &'static str {
         match result {
             Err(DriveError::InvalidParameter { name, .. }) => name,
-            Ok(p) => panic!("expected an error, got {p:?}"),
+            other => panic!("expected an invalid parameter, got {other:?}"),
         }
     }
 

@@ -11,33 +11,48 @@ impl MotionProfile {
     /// Exact state at time `t_s` (s; 0 = start of motion). At a discontinuity
     /// the value just after `t_s` is returned.
     pub fn sample(&self, t_s: f64) -> DriveState {
-        if let Kind::SpinUp { final_rate_rad_s } = self.kind {
-            return self.sample_spin_up(final_rate_rad_s, t_s);
+        match self.kind {
+            Kind::SpinUp { final_rate_rad_s } => return self.sample_spin_up(final_rate_rad_s, t_s),
+            Kind::Table { end_rate_rad_s } => return self.sample_table(end_rate_rad_s, t_s),
+            _ => {}
         }
         if t_s < 0.0 {
             DriveState::at_rest(self.start_rad)
         } else if t_s >= self.duration_s {
             DriveState::at_rest(self.end_rad)
         } else if t_s < 0.5 * self.duration_s {
-            self.first_half_state(t_s, true)
+            self.segment_state(t_s, true)
         } else {
-            self.first_half_state(self.duration_s - t_s, false).point_mirrored(self.start_rad + self.end_rad)
+            self.segment_state(self.duration_s - t_s, false).point_mirrored(self.start_rad + self.end_rad)
         }
     }
 
-    /// State at `s` (s) in `[0, T/2]` from the precomputed segments. With
-    /// `right_limit` a segment boundary belongs to the later segment,
-    /// otherwise to the earlier one (used for the mirrored half, where time
-    /// runs backwards).
-    pub(super) fn first_half_state(&self, s: f64, right_limit: bool) -> DriveState {
+    /// State at `s` (s) from the precomputed segments (`[0, T/2]` of a symmetric
+    /// profile, `[0, T]` of a table). With `right_limit` a segment boundary
+    /// belongs to the later segment, otherwise to the earlier one (used for the
+    /// mirrored half, where time runs backwards).
+    pub(super) fn segment_state(&self, s: f64, right_limit: bool) -> DriveState {
         let after = if right_limit {
-            self.first_half.partition_point(|seg| seg.t0_s <= s)
+            self.segments.partition_point(|seg| seg.t0_s <= s)
         } else {
-            self.first_half.partition_point(|seg| seg.t0_s < s)
+            self.segments.partition_point(|seg| seg.t0_s < s)
         };
-        match self.first_half.get(after.saturating_sub(1)) {
+        match self.segments.get(after.saturating_sub(1)) {
             Some(seg) => seg.state.advanced(s - seg.t0_s),
             None => DriveState::at_rest(self.start_rad),
+        }
+    }
+
+    /// A table's state at `t_s` (s): at rest at its first sample before it, its
+    /// spline on `[0, T)`, its end rate `end_rate` (rad/s) from its last sample on.
+    fn sample_table(&self, end_rate: f64, t_s: f64) -> DriveState {
+        if t_s < 0.0 {
+            DriveState::at_rest(self.start_rad)
+        } else if t_s < self.duration_s {
+            self.segment_state(t_s, true)
+        } else {
+            let angle_rad = self.end_rad + end_rate * (t_s - self.duration_s);
+            DriveState { angle_rad, rate_rad_s: end_rate, accel_rad_s2: 0.0, jerk_rad_s3: 0.0 }
         }
     }
 

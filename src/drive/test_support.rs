@@ -22,7 +22,7 @@ pub(super) fn allowed_bound(result: Result<MotionProfile, DriveError>) -> f64 {
         Err(DriveError::InvalidParameter { allowed, .. }) => {
             allowed.split_whitespace().nth(1).and_then(|s| s.parse().ok()).unwrap_or(f64::NAN)
         }
-        Ok(p) => panic!("expected an error, got {p:?}"),
+        other => panic!("expected an invalid parameter, got {other:?}"),
     }
 }
 

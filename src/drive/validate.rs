@@ -18,6 +18,18 @@ pub enum DriveError {
         /// Human-readable description of the allowed values.
         allowed: String,
     },
+    /// One sample of a table is out of its allowed range.
+    #[error("drive sample `{name}[{index}]` = {value} is invalid: allowed {allowed}")]
+    InvalidSample {
+        /// Which samples, `"times_s"` or `"angles_rad"`.
+        name: &'static str,
+        /// Index of the offending sample, from 0.
+        index: usize,
+        /// The rejected value, in the samples' SI unit.
+        value: f64,
+        /// Human-readable description of the allowed values.
+        allowed: String,
+    },
 }
 
 /// A validated point-to-point move.

@@ -162,8 +162,12 @@ pub struct LiftJoint {
     pub pivot_m: [f64; 3],
     /// Lower and upper limits, rad.
     pub limits_rad: (f64, f64),
-    /// Torque the drive can give, N·m.
+    /// Torque the drive can give, N·m (the URDF limit's effort): a run whose peak drive torque
+    /// exceeds it is flagged in its summary.
     pub effort_n_m: f64,
+    /// Fastest rate the drive can turn the joint, rad/s (the URDF limit's velocity): a scenario
+    /// whose drive is faster is refused.
+    pub velocity_rad_s: f64,
 }
 
 /// A robot read from URDF.

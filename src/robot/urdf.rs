@@ -192,14 +192,23 @@ impl Context<'_> {
             return Err(self.invalid(format!("{key}.origin@rpy"), "must be 0 0 0: the arm lies along x at zero angle"));
         }
         let (lower, upper) = (joint.limit.lower, joint.limit.upper);
-        if lower >= upper || lower.is_nan() || upper.is_nan() || joint.limit.effort <= 0.0 {
-            return Err(self.invalid(format!("{key}.limit"), "needs lower < upper (rad) and effort > 0 (N·m)"));
+        let (effort, velocity) = (joint.limit.effort, joint.limit.velocity);
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if lower >= upper || lower.is_nan() || upper.is_nan() || !positive(effort) || !positive(velocity) {
+            return Err(self.invalid(
+                format!("{key}.limit"),
+                format!(
+                    "lower = {lower}, upper = {upper}, effort = {effort}, velocity = {velocity}: needs lower < upper \
+                     (rad), effort > 0 (N·m) and velocity > 0 (rad/s)"
+                ),
+            ));
         }
         let lift = LiftJoint {
             name: joint.name.clone(),
             pivot_m: joint.origin.xyz.0,
             limits_rad: (lower, upper),
-            effort_n_m: joint.limit.effort,
+            effort_n_m: effort,
+            velocity_rad_s: velocity,
         };
         Ok((lift, joint.parent.link.clone()))
     }

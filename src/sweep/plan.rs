@@ -10,7 +10,7 @@ use serde::{Deserialize, Serialize};
 use super::vary::{Vary, show};
 use super::{SweepError, io_error};
 use crate::robot::Robot;
-use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
+use crate::scenario::{DriveSpec, Scenario, ScenarioError, ScenarioSpec};
 
 /// What a sweep runs; written to `DIR/plan.json` by every shard.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -204,12 +204,20 @@ fn array_index(len: usize, segment: &str, at: &str) -> Result<usize, String> {
     }
 }
 
-/// FNV-1a 64 of the case's canonical TOML spec followed by `robot_bytes`, its robot file, as 16
-/// hex digits: equal for equal inputs, so a rerun can tell a current case file.
+/// FNV-1a 64 of the case's canonical TOML spec followed by `robot_bytes`, its robot file, and a
+/// table drive's file, as 16 hex digits: equal for equal inputs, so a rerun can tell a current
+/// case file.
 pub fn case_hash(scenario: &Scenario, robot_bytes: &[u8]) -> Result<String, ScenarioError> {
     let canonical = toml::to_string(&scenario.spec)
         .map_err(|e| ScenarioError::Parse { path: scenario.path.clone(), message: format!("canonical form: {e}") })?;
-    Ok(format!("{:016x}", fnv1a64(&[canonical.as_bytes(), robot_bytes])))
+    let table_bytes = match &scenario.spec.drive {
+        DriveSpec::Table { file, .. } => {
+            let path = Scenario::table_path(&scenario.path, file);
+            std::fs::read(&path).map_err(|source| ScenarioError::Io { path, source })?
+        }
+        _ => Vec::new(),
+    };
+    Ok(format!("{:016x}", fnv1a64(&[canonical.as_bytes(), robot_bytes, &table_bytes])))
 }
 
 /// FNV-1a, 64 bits, over the parts in order.
