@@ -25,4 +25,5 @@ pub mod scenario;
 pub mod scene;
 pub mod seed;
 pub mod select;
+pub mod sensor;
 pub mod sweep;
