@@ -230,19 +230,18 @@ impl SensorSummary {
     /// The peaks of one sensor's series at times `t_s`.
     pub fn of(series: &SensorSeries, t_s: &[f64]) -> Self {
         let kind = &series.sensor.kind;
-        let channels = kind
-            .channels()
-            .iter()
-            .enumerate()
-            .map(|(k, def)| {
-                let (i, peak_abs) = series
-                    .values
-                    .iter()
-                    .enumerate()
-                    .fold((0, 0.0_f64), |best, (i, v)| if v[k].abs() > best.1 { (i, v[k].abs()) } else { best });
-                ChannelPeak { channel: def.key, peak_abs, peak_time_s: t_s.get(i).copied().unwrap_or(0.0) }
-            })
-            .collect();
+        let channels =
+            kind.channels()
+                .iter()
+                .enumerate()
+                .map(|(k, def)| {
+                    let (i, peak_abs) =
+                        series.values.iter().enumerate().fold((0, 0.0_f64), |best, (i, v)| {
+                            if v[k].abs() > best.1 { (i, v[k].abs()) } else { best }
+                        });
+                    ChannelPeak { channel: def.key, peak_abs, peak_time_s: t_s.get(i).copied().unwrap_or(0.0) }
+                })
+                .collect();
         SensorSummary { name: series.sensor.name.clone(), kind: kind.name(), station_m: kind.station_m(), channels }
     }
 }

@@ -270,9 +270,13 @@ impl Check<'_> {
     fn sensors(&self, specs: &[SensorSpec], robot: &Robot, payload: &Payload) -> Result<Vec<Sensor>, ScenarioError> {
         let mut sensors: Vec<Sensor> = Vec::with_capacity(specs.len());
         for (i, spec) in specs.iter().enumerate() {
-            let sensor = spec.resolve(robot).map_err(|(key, message)| self.invalid(&format!("sensors[{i}].{key}"), message))?;
+            let sensor =
+                spec.resolve(robot).map_err(|(key, message)| self.invalid(&format!("sensors[{i}].{key}"), message))?;
             if let Some(j) = sensors.iter().position(|s| s.name == sensor.name) {
-                return Err(self.invalid(&format!("sensors[{i}].name"), format!("`{}` is already the name of sensors[{j}]", sensor.name)));
+                return Err(self.invalid(
+                    &format!("sensors[{i}].name"),
+                    format!("`{}` is already the name of sensors[{j}]", sensor.name),
+                ));
             }
             let friction = payload.string().is_some_and(|held| held.friction_clamp().is_some());
             if friction && matches!(sensor.kind, SensorKind::StrainGauge { .. }) {

@@ -139,7 +139,8 @@ fn find_cycle(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>) -> Option<Vec<PathBu
 
 #[test]
 fn the_reader_finds_imports_in_code_and_not_in_comments() {
-    let code = code_of("use crate::{arm::Fidelity, model};\n// crate::scenario\nlet s = \"crate::run\"; crate::select::f();");
+    let code =
+        code_of("use crate::{arm::Fidelity, model};\n// crate::scenario\nlet s = \"crate::run\"; crate::select::f();");
     assert_eq!(names_after(&code, "crate::"), vec!["arm", "arm", "model", "select"]);
     let mut graph = BTreeMap::new();
     let (a, b) = (PathBuf::from("a.rs"), PathBuf::from("b.rs"));

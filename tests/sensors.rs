@@ -99,11 +99,16 @@ fn static_cantilever_moment_and_stress() {
         let ei = 2.06e11 * second_moment;
         let x: f64 = 8.2;
         let point_loads: f64 = masses.iter().map(|&(a, m)| m * g * x.min(a) * (2.0 * a - x.min(a)) / (2.0 * ei)).sum();
-        let slope = -(mu * g / (6.0 * ei) * (3.0 * length * length * x - 3.0 * length * x * x + x.powi(3)) + point_loads);
+        let slope =
+            -(mu * g / (6.0 * ei) * (3.0 * length * length * x - 3.0 * length * x * x + x.powi(3)) + point_loads);
         let [axial, across] = *channel(&series, "hand").last().unwrap();
         assert!((axial.hypot(across) / g - 1.0).abs() < 1e-9, "{fidelity}: hand reads ({axial}, {across})");
         let tolerance = if fidelity == Fidelity::Fe { 1e-6 } else { 1e-2 };
-        assert!((axial / (g * slope.sin()) - 1.0).abs() < tolerance, "{fidelity}: axial {axial} vs {}", g * slope.sin());
+        assert!(
+            (axial / (g * slope.sin()) - 1.0).abs() < tolerance,
+            "{fidelity}: axial {axial} vs {}",
+            g * slope.sin()
+        );
     }
 }
 

@@ -78,7 +78,9 @@ impl SensorKind {
             SensorKind::Accelerometer { .. } => {
                 [channel("axial", "m/s^2", "axial_m_s2"), channel("transverse", "m/s^2", "transverse_m_s2")]
             }
-            SensorKind::StrainGauge { .. } => [channel("moment", "N*m", "moment_n_m"), channel("stress", "Pa", "stress_pa")],
+            SensorKind::StrainGauge { .. } => {
+                [channel("moment", "N*m", "moment_n_m"), channel("stress", "Pa", "stress_pa")]
+            }
             SensorKind::Encoder => [channel("angle", "rad", "angle_rad"), channel("rate", "rad/s", "rate_rad_s")],
         }
     }
