@@ -16,6 +16,7 @@
 //! | `plots/modal/q<i>` | elastic coordinates (modal models) |
 //! | `plots/energy/{kinetic,strain,gravity}` | J |
 //! | `plots/string_slip` | friction clamp slip, m |
+//! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time |
 //! | `summary` | the run summary (JSON) |
 //!
@@ -178,6 +179,12 @@ impl Writer<'_> {
         }
         for (k, (name, forces)) in pad_names.iter().zip(&s.pad_force_n).enumerate() {
             self.send_force(&force_entity(name), forces, summary.pairs.get(k))?;
+        }
+        for sensor in &s.sensors {
+            for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
+                let entity = crate::compare::sensor_entity(&sensor.sensor.name, channel.name);
+                self.send(&entity, sensor.values.iter().map(|v| v[k]))?;
+            }
         }
         Ok(())
     }
