@@ -106,6 +106,24 @@ enum Command {
     /// it): per-case results, a table and a chart of peak contact force against string weight
     /// (docs/sweeps.md). `pipearm sweep merge DIR` joins the shards.
     Sweep(SweepArgs),
+    /// Run a scenario and set it against measured signals (docs/measurements.md): print a table
+    /// per signal and write <out>/<name>.compare.json.
+    Compare {
+        /// Scenario file.
+        scenario: PathBuf,
+        /// Measured CSV: `t[s]` then columns named after the run's signals, units in brackets.
+        #[arg(long)]
+        measured: PathBuf,
+        /// Shift the measured file in time to the cross-correlation's peak (reported).
+        #[arg(long)]
+        shift: bool,
+        /// Override the model: rigid, modal:N or fe.
+        #[arg(long, value_parser = parse_fidelity)]
+        model: Option<Fidelity>,
+        /// Folder for the report.
+        #[arg(long, default_value = "recordings")]
+        out: PathBuf,
+    },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -183,6 +201,9 @@ fn main() -> Result<()> {
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
         Command::Sweep(args) => sweep(args),
+        Command::Compare { scenario, measured, shift, model, out } => {
+            compare_command(&scenario, &measured, pipearm::compare::CompareOptions { fidelity: model, shift }, &out)
+        }
     }
 }
 
@@ -293,6 +314,19 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
         out.join(format!("{name}.decimated.{{csv,parquet}}")).display(),
         started.elapsed().as_secs_f64()
     );
+    Ok(())
+}
+
+/// `pipearm compare`: the measured file is read and checked before the run; nothing is written
+/// unless the comparison completes.
+fn compare_command(path: &Path, measured: &Path, options: pipearm::compare::CompareOptions, out: &Path) -> Result<()> {
+    let scenario = Scenario::load(path)?;
+    let measured = pipearm::measured::read(measured)?;
+    let compared = pipearm::compare::compare(&scenario.model, &measured, &options)?;
+    print!("{}", pipearm::compare::table(&compared.comparison));
+    let json = out.join(format!("{}.compare.json", scenario.model.name));
+    pipearm::compare::write_json(&json, &compared.comparison)?;
+    println!("wrote {}", json.display());
     Ok(())
 }
 

@@ -44,6 +44,8 @@ pub struct Model {
     pub integrator: IntegratorKind,
     /// Time step and span.
     pub time: TimeOptions,
+    /// Sensors read at every step ([`crate::sensor`]).
+    pub sensors: Vec<crate::sensor::Sensor>,
 }
 
 impl Model {

@@ -11,6 +11,8 @@ use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::integrate::StepControl;
 use crate::model::{DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
+use crate::sensor::probe::{ArmState, PointLoad};
+use crate::sensor::{Sensor, SensorProbe};
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -48,13 +50,24 @@ pub struct Series {
     pub frames: Vec<Frame>,
     /// The unchanging part of the drawing.
     pub layout: Option<SceneLayout>,
+    /// Each sensor's two channels per step, in the model's sensor order.
+    pub sensors: Vec<SensorSeries>,
+}
+
+/// One sensor's readings per step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorSeries {
+    /// The sensor.
+    pub sensor: Sensor,
+    /// Its two channels per step, in the units of [`crate::sensor::SensorKind::channels`].
+    pub values: Vec<[f64; 2]>,
 }
 
 impl Series {
     /// Empty histories with room for `steps` steps of `pads` pads, `modal_dofs` elastic
     /// coordinates and `frames` frames: grown by doubling instead, the histories of a run cost
     /// more in reallocation (copies, and fresh pages the kernel zeroes) than its contact detection.
-    fn with_capacity(steps: usize, pads: usize, modal_dofs: usize, frames: usize) -> Self {
+    fn with_capacity(steps: usize, pads: usize, modal_dofs: usize, frames: usize, sensors: &[Sensor]) -> Self {
         Series {
             t_s: Vec::with_capacity(steps),
             hub_angle_rad: Vec::with_capacity(steps),
@@ -68,6 +81,10 @@ impl Series {
             modal_q: Vec::with_capacity(steps * modal_dofs),
             keep: Vec::with_capacity(steps),
             frames: Vec::with_capacity(frames),
+            sensors: sensors
+                .iter()
+                .map(|sensor| SensorSeries { sensor: sensor.clone(), values: Vec::with_capacity(steps) })
+                .collect(),
             ..Series::default()
         }
     }
@@ -181,6 +198,54 @@ pub struct RunSummary {
     pub highest_omega_dt: f64,
     /// The integrator's stability limit on ω·dt (`None`: unconditionally stable; 0: none).
     pub stability_limit_omega_dt: Option<f64>,
+    /// Each sensor's peaks (left out of the file when the scenario has none).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorSummary>,
+}
+
+/// A sensor's peak readings.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SensorSummary {
+    /// Its name.
+    pub name: String,
+    /// Its kind, as a scenario names it.
+    pub kind: &'static str,
+    /// Its arm station, m (none for an encoder).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub station_m: Option<f64>,
+    /// Per channel: the largest |reading| and when.
+    pub channels: Vec<ChannelPeak>,
+}
+
+/// The largest |reading| of one channel.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ChannelPeak {
+    /// The channel with its unit (`axial_m_s2`, `moment_n_m`, ...).
+    pub channel: &'static str,
+    /// Largest |value|, in the channel's unit.
+    pub peak_abs: f64,
+    /// When, s.
+    pub peak_time_s: f64,
+}
+
+impl SensorSummary {
+    /// The peaks of one sensor's series at times `t_s`.
+    pub fn of(series: &SensorSeries, t_s: &[f64]) -> Self {
+        let kind = &series.sensor.kind;
+        let channels =
+            kind.channels()
+                .iter()
+                .enumerate()
+                .map(|(k, def)| {
+                    let (i, peak_abs) =
+                        series.values.iter().enumerate().fold((0, 0.0_f64), |best, (i, v)| {
+                            if v[k].abs() > best.1 { (i, v[k].abs()) } else { best }
+                        });
+                    ChannelPeak { channel: def.key, peak_abs, peak_time_s: t_s.get(i).copied().unwrap_or(0.0) }
+                })
+                .collect();
+        SensorSummary { name: series.sensor.name.clone(), kind: kind.name(), station_m: kind.station_m(), channels }
+    }
 }
 
 /// A drive's peaks against the lift joint's URDF limits. The rate is known before the run and a
@@ -256,7 +321,8 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
     let pads = scene.pads().count();
-    *series = Series::with_capacity(steps, pads, modal_dofs, frames);
+    *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
+    let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut trackers = vec![ImpactTracker::default(); pads];
     if options.capture_frames {
         series.layout = Some(scene.layout());
@@ -272,6 +338,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
     record(&scene, &first, series, &mut trackers);
+    read_sensors(&scene, &probes, series);
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
@@ -300,6 +367,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
             return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
         }
         record(&scene, &sample, series, &mut trackers);
+        read_sensors(&scene, &probes, series);
         keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
@@ -405,6 +473,28 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
 }
 
+/// Each sensor's reading at the scene's current state.
+fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
+    if probes.is_empty() {
+        return;
+    }
+    let (hub, q, qd) = scene.arm.kinematics();
+    let qdd = scene.arm.elastic_accelerations();
+    let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
+    let loads: Vec<PointLoad> = scene
+        .pads()
+        .filter(|p| p.force_n > 0.0)
+        .map(|p| PointLoad {
+            station_m: p.dampener.station_m,
+            point_m: p.point_m,
+            force_n: p.normal_world.map(|n| p.force_n * n),
+        })
+        .collect();
+    for (probe, out) in probes.iter().zip(&mut series.sensors) {
+        out.values.push(probe.read(&state, &loads));
+    }
+}
+
 fn summarize(
     model: &Model,
     scene: &Scene,
@@ -476,6 +566,7 @@ fn summarize(
         pairs,
         highest_omega_dt: arm.highest_omega_rad_s * model.time.step_s,
         stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),
+        sensors: series.sensors.iter().map(|s| SensorSummary::of(s, &series.t_s)).collect(),
         string_slip: scene.grip().map(|g| SlipSummary {
             squeeze_n: g.squeeze_n,
             max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),

@@ -21,6 +21,7 @@ use crate::model::{
     PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
+use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
 pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -84,6 +85,9 @@ pub struct ScenarioSpec {
     pub integrator: IntegratorKind,
     /// Time step and span.
     pub time: TimeOptions,
+    /// Sensors read at every step.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<SensorSpec>,
 }
 
 /// What a scenario may change of the robot's arm.
@@ -260,6 +264,7 @@ impl Scenario {
         let payload = check.payload(&spec.payload, &robot)?;
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
+        let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
         let model = Model {
             name: spec.name.clone(),
             robot,
@@ -276,6 +281,7 @@ impl Scenario {
             physics: spec.physics,
             integrator: spec.integrator,
             time: spec.time,
+            sensors,
         };
         check.model(&model)?;
         Ok(Scenario { path: path.into(), spec, model })
@@ -290,6 +296,31 @@ struct Check<'a> {
 impl Check<'_> {
     fn invalid(&self, key: &str, message: impl Into<String>) -> ScenarioError {
         ScenarioError::Invalid { path: self.path.into(), key: key.into(), message: message.into() }
+    }
+
+    /// `[[sensors]]`: each resolved on the robot, names unique; no strain gauge with a friction
+    /// clamp (its load reaches the arm as generalized forces, without a point to take moments at).
+    fn sensors(&self, specs: &[SensorSpec], robot: &Robot, payload: &Payload) -> Result<Vec<Sensor>, ScenarioError> {
+        let mut sensors: Vec<Sensor> = Vec::with_capacity(specs.len());
+        for (i, spec) in specs.iter().enumerate() {
+            let sensor =
+                spec.resolve(robot).map_err(|(key, message)| self.invalid(&format!("sensors[{i}].{key}"), message))?;
+            if let Some(j) = sensors.iter().position(|s| s.name == sensor.name) {
+                return Err(self.invalid(
+                    &format!("sensors[{i}].name"),
+                    format!("`{}` is already the name of sensors[{j}]", sensor.name),
+                ));
+            }
+            let friction = payload.string().is_some_and(|held| held.friction_clamp().is_some());
+            if friction && matches!(sensor.kind, SensorKind::StrainGauge { .. }) {
+                return Err(self.invalid(
+                    &format!("sensors[{i}].kind"),
+                    "a strain gauge needs a rigid clamp (payload.clamp = \"rigid\"): a friction-clamped string's load reaches the arm as generalized forces, without a point to take moments at",
+                ));
+            }
+            sensors.push(sensor);
+        }
+        Ok(sensors)
     }
 
     /// The ranges serde cannot check, on the resolved model.

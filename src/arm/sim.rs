@@ -294,15 +294,22 @@ impl ArmSimulation {
         }
     }
 
+    /// Elastic accelerations q̈ at the current state (the integrator's, consistent with the
+    /// state's loads): borrowed under a prescribed hub, copied under a free one.
+    pub fn elastic_accelerations(&self) -> Cow<'_, DVector<f64>> {
+        let a = &self.state.a;
+        match self.drive {
+            HubDrive::Prescribed(_) => Cow::Borrowed(a),
+            HubDrive::Free { .. } => Cow::Owned(a.rows(1, a.len() - 1).into_owned()),
+        }
+    }
+
     /// Outputs at the current state.
     pub fn sample(&self) -> ArmSample {
         let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
         let s = &self.state;
         let (hub, q, qd) = self.kinematics();
-        let qdd = match self.drive {
-            HubDrive::Prescribed(_) => Cow::Borrowed(&s.a),
-            HubDrive::Free { .. } => Cow::Owned(s.a.rows(1, q.len()).into_owned()),
-        };
+        let qdd = self.elastic_accelerations();
         let [ru, rv, _] = self.arm.tip_rows();
         let (u, v, ud, vd) =
             (dot(ru, q.as_slice()), dot(rv, q.as_slice()), dot(ru, qd.as_slice()), dot(rv, qd.as_slice()));

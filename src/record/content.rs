@@ -143,6 +143,12 @@ impl Writer<'_> {
             let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
             self.send_force(&force_entity(name), forces, impacts)?;
         }
+        for sensor in &s.sensors {
+            for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
+                let entity = crate::compare::sensor_entity(&sensor.sensor.name, channel.name);
+                self.send(&entity, sensor.values.iter().map(|v| v[k]))?;
+            }
+        }
         Ok(())
     }
 

@@ -16,6 +16,7 @@
 //! | `plots/modal/q<i>` | elastic coordinates (modal models) |
 //! | `plots/energy/{kinetic,strain,gravity}` | J |
 //! | `plots/string_slip` | friction clamp slip, m |
+//! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time; a diverged run's guard message last |
 //! | `summary` | the run summary (JSON; not for a diverged run) |
 //!
