@@ -17,16 +17,19 @@
 //! | column | what |
 //! |---|---|
 //! | `t[s]` | time |
-//! | `hub_angle[rad]`, `hub_rate[rad/s]`, `hub_accel[rad/s^2]` | hub motion |
-//! | `tip_deflection_axial[m]`, `tip_deflection_transverse[m]` | tip displacement in the hub frame |
-//! | `tip_velocity_axial[m/s]`, `tip_velocity_transverse[m/s]` | tip velocity relative to the hub frame |
+//! | `hub.angle[rad]`, `hub.rate[rad/s]`, `hub.accel[rad/s^2]` | hub motion |
+//! | `tip_deflection.axial[m]`, `tip_deflection.transverse[m]` | tip displacement in the hub frame |
+//! | `tip_velocity.axial[m/s]`, `tip_velocity.transverse[m/s]` | tip velocity relative to the hub frame |
 //! | `drive_torque[N*m]` | torque of the drive on the hub |
-//! | `contact_force_arm-<pad>[N]` | contact force, one column per pad |
+//! | `contact_force.<pad>[N]` | contact force, one column per pad |
 //! | `string_slip[m]`, `jaw_sinking[m]` | friction clamp only |
-//! | `energy_kinetic[J]`, `energy_strain[J]`, `energy_gravity[J]` | energies |
-//! | `modal_q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
+//! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |
+//! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
+//! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
 //!
-//! Units are written in ASCII (`^`, `*`) so a column can be typed as a pandas key.
+//! Units are written in ASCII (`^`, `*`) so a column can be typed as a pandas key. A signal has the
+//! same name here as in a measured file for `pipearm compare` (energies and modal coordinates are
+//! not measured signals).
 //!
 //! CSV: RFC 4180 (comma separated, `.` decimal point, a header row, a name quoted if it holds a
 //! comma or a quote); floats in the shortest text that reads back to the same `f64` (zmij's, as
@@ -131,28 +134,34 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
     };
     let s = series;
     push("t[s]".into(), &mut s.t_s.iter().copied());
-    push("hub_angle[rad]".into(), &mut s.hub_angle_rad.iter().copied());
-    push("hub_rate[rad/s]".into(), &mut s.hub_rate_rad_s.iter().copied());
-    push("hub_accel[rad/s^2]".into(), &mut s.hub_accel_rad_s2.iter().copied());
+    push("hub.angle[rad]".into(), &mut s.hub_angle_rad.iter().copied());
+    push("hub.rate[rad/s]".into(), &mut s.hub_rate_rad_s.iter().copied());
+    push("hub.accel[rad/s^2]".into(), &mut s.hub_accel_rad_s2.iter().copied());
     for (k, axis) in ["axial", "transverse"].into_iter().enumerate() {
-        push(format!("tip_deflection_{axis}[m]"), &mut s.tip_deflection_m.iter().map(|d| d[k]));
+        push(format!("tip_deflection.{axis}[m]"), &mut s.tip_deflection_m.iter().map(|d| d[k]));
     }
     for (k, axis) in ["axial", "transverse"].into_iter().enumerate() {
-        push(format!("tip_velocity_{axis}[m/s]"), &mut s.tip_velocity_m_s.iter().map(|v| v[k]));
+        push(format!("tip_velocity.{axis}[m/s]"), &mut s.tip_velocity_m_s.iter().map(|v| v[k]));
     }
     push("drive_torque[N*m]".into(), &mut s.drive_torque_n_m.iter().copied());
     for (name, forces) in pad_names.iter().zip(&s.pad_force_n) {
-        push(format!("contact_force_arm-{name}[N]"), &mut forces.iter().copied());
+        push(format!("contact_force.{name}[N]"), &mut forces.iter().copied());
     }
     if !s.string_slip_m.is_empty() {
         push("string_slip[m]".into(), &mut s.string_slip_m.iter().copied());
         push("jaw_sinking[m]".into(), &mut s.jaw_sinking_m.iter().copied());
     }
+    for sensor in &s.sensors {
+        for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
+            let header = format!("{}.{}[{}]", sensor.sensor.name, channel.name, channel.unit);
+            push(header, &mut sensor.values.iter().map(|v| v[k]));
+        }
+    }
     for (k, kind) in ["kinetic", "strain", "gravity"].into_iter().enumerate() {
-        push(format!("energy_{kind}[J]"), &mut s.energies_j.iter().map(|e| e[k]));
+        push(format!("energy.{kind}[J]"), &mut s.energies_j.iter().map(|e| e[k]));
     }
     for i in 0..s.modal_dofs {
-        push(format!("modal_q{}[m*kg^0.5]", i + 1), &mut s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied());
+        push(format!("modal.q{}[m*kg^0.5]", i + 1), &mut s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied());
     }
     Ok(out)
 }
@@ -289,7 +298,7 @@ mod tests {
 
     #[test]
     fn a_header_with_a_comma_or_quote_is_quoted() {
-        assert_eq!(csv_field("contact_force_arm-stop[N]"), "contact_force_arm-stop[N]");
+        assert_eq!(csv_field("contact_force.stop[N]"), "contact_force.stop[N]");
         assert_eq!(csv_field("a,b"), "\"a,b\"");
         assert_eq!(csv_field("say \"x\""), "\"say \"\"x\"\"\"");
     }

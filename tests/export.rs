@@ -25,29 +25,29 @@ fn scratch(tag: &str) -> PathBuf {
 fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec<f64>)> {
     let mut columns: Vec<(String, Vec<f64>)> = vec![
         ("t[s]".into(), series.t_s.clone()),
-        ("hub_angle[rad]".into(), series.hub_angle_rad.clone()),
-        ("hub_rate[rad/s]".into(), series.hub_rate_rad_s.clone()),
-        ("hub_accel[rad/s^2]".into(), series.hub_accel_rad_s2.clone()),
-        ("tip_deflection_axial[m]".into(), series.tip_deflection_m.iter().map(|d| d[0]).collect()),
-        ("tip_deflection_transverse[m]".into(), series.tip_deflection_m.iter().map(|d| d[1]).collect()),
-        ("tip_velocity_axial[m/s]".into(), series.tip_velocity_m_s.iter().map(|d| d[0]).collect()),
-        ("tip_velocity_transverse[m/s]".into(), series.tip_velocity_m_s.iter().map(|d| d[1]).collect()),
+        ("hub.angle[rad]".into(), series.hub_angle_rad.clone()),
+        ("hub.rate[rad/s]".into(), series.hub_rate_rad_s.clone()),
+        ("hub.accel[rad/s^2]".into(), series.hub_accel_rad_s2.clone()),
+        ("tip_deflection.axial[m]".into(), series.tip_deflection_m.iter().map(|d| d[0]).collect()),
+        ("tip_deflection.transverse[m]".into(), series.tip_deflection_m.iter().map(|d| d[1]).collect()),
+        ("tip_velocity.axial[m/s]".into(), series.tip_velocity_m_s.iter().map(|d| d[0]).collect()),
+        ("tip_velocity.transverse[m/s]".into(), series.tip_velocity_m_s.iter().map(|d| d[1]).collect()),
         ("drive_torque[N*m]".into(), series.drive_torque_n_m.clone()),
     ];
     for (pad, forces) in pads.iter().zip(&series.pad_force_n) {
-        columns.push((format!("contact_force_arm-{pad}[N]"), forces.clone()));
+        columns.push((format!("contact_force.{pad}[N]"), forces.clone()));
     }
     if !series.string_slip_m.is_empty() {
         columns.push(("string_slip[m]".into(), series.string_slip_m.clone()));
         columns.push(("jaw_sinking[m]".into(), series.jaw_sinking_m.clone()));
     }
     for (k, kind) in ["kinetic", "strain", "gravity"].iter().enumerate() {
-        columns.push((format!("energy_{kind}[J]"), series.energies_j.iter().map(|e| e[k]).collect()));
+        columns.push((format!("energy.{kind}[J]"), series.energies_j.iter().map(|e| e[k]).collect()));
     }
     let n = series.modal_dofs;
     for i in 0..n {
         let q = (0..series.t_s.len()).map(|step| series.modal_q[step * n + i]).collect();
-        columns.push((format!("modal_q{}[m*kg^0.5]", i + 1), q));
+        columns.push((format!("modal.q{}[m*kg^0.5]", i + 1), q));
     }
     if keep_only {
         for (_, values) in &mut columns {
@@ -158,7 +158,7 @@ fn two_pads_give_one_force_column_each() {
     write_tables(&dir, "two", &series, &["vertical_stop".into(), "inner_stop".into()]).unwrap();
     let csv = read_csv(&dir.join("two.steps.csv"));
     let forces: Vec<&str> = csv.iter().map(|c| c.0.as_str()).filter(|h| h.starts_with("contact_force")).collect();
-    assert_eq!(forces, ["contact_force_arm-vertical_stop[N]", "contact_force_arm-inner_stop[N]"]);
+    assert_eq!(forces, ["contact_force.vertical_stop[N]", "contact_force.inner_stop[N]"]);
     std::fs::remove_dir_all(&dir).ok();
     check_round_trip("two", &series, &["vertical_stop", "inner_stop"]);
 }

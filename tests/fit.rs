@@ -44,7 +44,7 @@ fn measurements_at(path: &Path, fidelity: Fidelity, step_s: f64) -> Vec<Signal> 
     let (_, series) = run(&truth, Some(fidelity)).unwrap();
     let mut seed = 7;
     let pads = ["vertical_stop".to_string()];
-    ["tip_deflection_transverse", "contact_force_arm-vertical_stop"]
+    ["tip_deflection.transverse", "contact_force.vertical_stop"]
         .into_iter()
         .map(|name| {
             let (_, values) = simulated(name, &series, &pads).unwrap();

@@ -95,8 +95,9 @@ pub struct Signal {
 }
 
 /// The simulated signal `name` of a run at each step, if the run has it: a column of the
-/// run's tables (`pipearm run --csv`, [`crate::export`]) named without its unit, e.g.
-/// `tip_deflection_transverse`, `contact_force_arm-<pad>`, `hub_angle`; with its unit.
+/// run's tables (`pipearm run --csv`, [`crate::export`]) named without its unit, as
+/// `pipearm compare` names them: `tip_deflection.transverse`, `contact_force.<pad>`, `hub.angle`,
+/// `<sensor>.<channel>`; with its unit.
 pub fn simulated(name: &str, series: &Series, pad_names: &[String]) -> Option<(String, Vec<f64>)> {
     let columns = crate::export::columns(series, pad_names, crate::export::Rate::Steps).ok()?;
     columns.into_iter().find_map(|c| {
