@@ -124,6 +124,33 @@ enum Command {
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
     },
+    /// Fit scenario parameters to measured signals (least squares); print them with 95 %
+    /// intervals; write <out>/<name>.fit.json and <out>/<name>.fitted.toml.
+    ///
+    /// Example: pipearm fit scenarios/default.toml --measured rig.csv
+    ///   --params arm.damping_ratios.0,dampeners.0.law.stiffness --step 0.001
+    Fit {
+        /// Scenario file.
+        scenario: PathBuf,
+        /// Measured CSV: `t[s]` then columns named after the run's signals, units in brackets.
+        #[arg(long)]
+        measured: PathBuf,
+        /// Scenario keys to fit, comma separated (docs/measurements.md lists them).
+        #[arg(long, value_delimiter = ',', required = true)]
+        params: Vec<String>,
+        /// Override the model: rigid, modal:N or fe.
+        #[arg(long, value_parser = parse_fidelity)]
+        model: Option<Fidelity>,
+        /// Override the time step, s (keep it under a twentieth of the shortest impact).
+        #[arg(long)]
+        step: Option<f64>,
+        /// Shift the measured file in time to the run first (its clock's offset, reported).
+        #[arg(long)]
+        shift: bool,
+        /// Folder for the report and the fitted scenario.
+        #[arg(long, default_value = "recordings")]
+        out: PathBuf,
+    },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -201,6 +228,10 @@ fn main() -> Result<()> {
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
         Command::Sweep(args) => sweep(args),
+        Command::Fit { scenario, measured, params, model, step, shift, out } => {
+            let settings = pipearm::fit::RunSettings { fidelity: model, step_s: step };
+            fit_command(&scenario, &measured, &params, (settings, shift), &out)
+        }
         Command::Compare { scenario, measured, shift, model, out } => {
             compare_command(&scenario, &measured, pipearm::compare::CompareOptions { fidelity: model, shift }, &out)
         }
@@ -327,6 +358,47 @@ fn compare_command(path: &Path, measured: &Path, options: pipearm::compare::Comp
     let json = out.join(format!("{}.compare.json", scenario.model.name));
     pipearm::compare::write_json(&json, &compared.comparison)?;
     println!("wrote {}", json.display());
+    Ok(())
+}
+
+/// `pipearm fit`: the fitted values with their intervals; the report and the fitted scenario.
+fn fit_command(
+    path: &Path,
+    measured: &Path,
+    keys: &[String],
+    (settings, shift): (pipearm::fit::RunSettings, bool),
+    out: &Path,
+) -> Result<()> {
+    if let Some(step) = settings.step_s
+        && !(step.is_finite() && step > 0.0 && step <= 0.1)
+    {
+        bail!("--step = {step}: allowed 0 < step <= 0.1 s");
+    }
+    let scenario = Scenario::load(path)?;
+    let measured = pipearm::measured::read(measured)?;
+    let signals = pipearm::fit::signals_of(&measured, &scenario.model)?;
+    let problem = pipearm::fit::Problem::new(path, keys, settings)?;
+    pipearm::export::check_folder(out).context("--out")?;
+    let report = pipearm::fit::fit(&problem, &signals, shift, &pipearm::fit::lm::LmOptions::default())?;
+    println!("{:<32} {:>14} {:>14} {:>31}", "key", "scenario", "fitted", "95 % interval");
+    for p in &report.parameters {
+        let [lo, hi] = p.interval_95;
+        println!("{:<32} {:>14.6e} {:>14.6e} {:>14.6e} .. {:>14.6e}", p.key, p.initial, p.value, lo, hi);
+    }
+    println!(
+        "shift {:.4} s, RMS residual over peak {:.4} -> {:.4}, {} runs, converged: {}",
+        report.shift_s, report.rms_residual[0], report.rms_residual[1], report.evaluations, report.converged
+    );
+    let values: Vec<f64> = report.parameters.iter().map(|p| p.value).collect();
+    let text = problem.scenario_text(&values, out)?;
+    let name = &scenario.model.name;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let json = out.join(format!("{name}.fit.json"));
+    std::fs::write(&json, serde_json::to_string_pretty(&report)?)
+        .with_context(|| format!("writing {}", json.display()))?;
+    let fitted = out.join(format!("{name}.fitted.toml"));
+    std::fs::write(&fitted, text).with_context(|| format!("writing {}", fitted.display()))?;
+    println!("wrote {} and {}", json.display(), fitted.display());
     Ok(())
 }
 

@@ -65,7 +65,7 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
     let signals = measurements(&path);
     let keys = ["arm.damping_ratios.0".to_string(), "dampeners.0.law.stiffness".to_string()];
     let problem = Problem::new(&path, &keys, settings()).unwrap();
-    let report = fit(&problem, &signals, &LmOptions::default()).unwrap();
+    let report = fit(&problem, &signals, true, &LmOptions::default()).unwrap();
     println!("{}", serde_json::to_string_pretty(&report).unwrap());
     assert!((report.shift_s + SHIFT_S).abs() < 1e-3, "shift {} s against {}", report.shift_s, -SHIFT_S);
     for (fitted, truth) in report.parameters.iter().zip([TRUE_DAMPING_RATIO, TRUE_STIFFNESS]) {
@@ -104,4 +104,49 @@ fn the_damping_override_sets_the_arms_measured_decay() {
         println!("ζ = {zeta}: measured {measured}");
         assert!((measured - zeta).abs() < 0.15 * zeta, "ζ = {zeta}: the tip decays at {measured}");
     }
+}
+
+/// `pipearm fit` on the command line: a measured file from a run with a stiffer pad, the pad's
+/// stiffness fitted back; the report and a fitted scenario that loads from its own folder (its
+/// robot path rewritten); a key that cannot be fitted fails and writes nothing.
+#[test]
+fn fit_on_the_command_line_writes_a_report_and_a_scenario_that_loads() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let mut truth = Scenario::load(&path).unwrap().model;
+    let ForceLaw::HuntCrossley { stiffness, .. } = &mut truth.dampeners[0].law else { panic!("default law changed") };
+    *stiffness = TRUE_STIFFNESS;
+    let (_, series) = run(&truth, None).unwrap();
+    let pads = ["vertical_stop".to_string()];
+    let (_, tip) = simulated("tip_deflection.transverse", &series, &pads).unwrap();
+    let (_, force) = simulated("contact_force.vertical_stop", &series, &pads).unwrap();
+    let dir = std::env::temp_dir().join(format!("pipearm-fit-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut csv = String::from("t[s],tip_deflection.transverse[mm],contact_force.vertical_stop[kN]\n");
+    for ((t, w), f) in series.t_s.iter().zip(&tip).zip(&force) {
+        csv += &format!("{t},{},{}\n", 1e3 * w, 1e-3 * f);
+    }
+    let measured = dir.join("rig.csv");
+    std::fs::write(&measured, csv).unwrap();
+    let out = dir.join("out");
+    let fit = |params: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_pipearm"))
+            .args(["fit", path.to_str().unwrap(), "--measured", measured.to_str().unwrap(), "--params", params])
+            .args(["--out", out.to_str().unwrap()])
+            .output()
+            .unwrap()
+    };
+    let refused = fit("time.step_s");
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("time.step_s"), "{refused:?}");
+    assert!(!out.exists(), "a refused fit wrote {}", out.display());
+    let done = fit("dampeners.0.law.stiffness");
+    assert!(done.status.success(), "{}", String::from_utf8_lossy(&done.stderr));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("default.fit.json")).unwrap()).unwrap();
+    let value = report["parameters"][0]["value"].as_f64().unwrap();
+    assert!((value - TRUE_STIFFNESS).abs() < 0.01 * TRUE_STIFFNESS, "fitted {value} against {TRUE_STIFFNESS}");
+    let fitted = Scenario::load(&out.join("default.fitted.toml")).unwrap().model;
+    let ForceLaw::HuntCrossley { stiffness, .. } = fitted.dampeners[0].law else { panic!() };
+    assert_eq!(stiffness, value);
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -3,9 +3,10 @@
 //! Each named scenario key (the arm's modal damping ratios, a pad law's stiffness, exponent,
 //! restitution or damping, the string's length) is a parameter within bounds. The residuals
 //! are the simulated signals minus the measured ones at the measured times, each signal divided
-//! by its measured peak so that signals of different units weigh alike. The measured signals are
-//! first aligned in time with the simulation at the scenario's own values (the shift of least
-//! squared difference, [`alignment_shift`]), and that shift is held while the parameters move.
+//! by its measured peak so that signals of different units weigh alike. With `align` (the CLI's
+//! `--shift`) the measured signals are first aligned in time with the simulation at the scenario's
+//! own values (the shift of least squared difference, [`alignment_shift`]); that shift is held
+//! while the parameters move, and found again from the fitted values until it holds.
 //!
 //! The uncertainty: the standard error of each parameter from the Jacobian at the solution,
 //! s² (JᵀJ)⁻¹ with s² the residuals' variance, both taken over the residuals' effective number of
@@ -41,6 +42,9 @@ pub enum FitError {
     /// A measured signal the simulation does not produce.
     #[error("measured column `{0}`: the run has no such signal")]
     Signal(String),
+    /// In the measured file.
+    #[error(transparent)]
+    Measured(#[from] Box<crate::measured::MeasuredError>),
 }
 
 /// A parameter to fit: a scenario key and its bounds.
@@ -117,6 +121,16 @@ pub struct RunSettings {
     pub step_s: Option<f64>,
 }
 
+/// The measured file's columns as signals to fit, checked against the signals a run of `model`
+/// gives (names and units, converted to SI).
+pub fn signals_of(measured: &crate::measured::Measured, model: &crate::model::Model) -> Result<Vec<Signal>, FitError> {
+    let defs = crate::compare::signal_defs(model);
+    let known: Vec<crate::measured::Known> =
+        defs.iter().map(|d| crate::measured::Known { name: &d.name, unit: d.unit }).collect();
+    let columns = measured.to_si(&known).map_err(Box::new)?;
+    Ok(columns.into_iter().map(|c| Signal { name: c.name, t_s: measured.t_s.clone(), values: c.values }).collect())
+}
+
 /// A scenario and the parameters to fit in it.
 pub struct Problem {
     path: PathBuf,
@@ -157,9 +171,20 @@ impl Problem {
         Ok(Problem { path: path.into(), document, robot: scenario.model.robot, settings, pad_names, parameters })
     }
 
-    /// The scenario file's text with the parameters at `values`.
-    pub fn scenario_text(&self, values: &[f64]) -> Result<String, FitError> {
-        let document = self.document_at(values)?;
+    /// The scenario file's text with the parameters at `values`, to be written into `folder`:
+    /// its relative paths (the robot, a drive table) rewritten to reach the same files from there.
+    pub fn scenario_text(&self, values: &[f64], folder: &Path) -> Result<String, FitError> {
+        let mut document = self.document_at(values)?;
+        let base = self.path.parent().unwrap_or(Path::new("."));
+        for key in ["robot", "drive.file"] {
+            if let Some(relative) = get_text(&document, key) {
+                let target = std::path::absolute(base.join(relative)).unwrap_or_else(|_| base.join(relative));
+                let from = std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf());
+                let path = relative_path(&from, &target).to_string_lossy().into_owned();
+                set_key(&mut document, key, toml::Value::String(path))
+                    .map_err(|message| FitError::Key { key: key.into(), message })?;
+            }
+        }
         toml::to_string(&document).map_err(|e| {
             Box::new(ScenarioError::Parse { path: self.path.clone(), message: format!("writing: {e}") }).into()
         })
@@ -190,6 +215,20 @@ impl Problem {
 
 fn show(parameters: &[Parameter], values: &[f64]) -> String {
     parameters.iter().zip(values).map(|(p, v)| format!("{}={v:.6e}", p.key)).collect::<Vec<_>>().join(", ")
+}
+
+/// The text at dotted `key` of a TOML document.
+fn get_text<'a>(document: &'a toml::Value, key: &str) -> Option<&'a str> {
+    key.split('.').try_fold(document, |node, segment| node.get(segment))?.as_str()
+}
+
+/// `target` as a path from the folder `from` (both absolute): `..` up to their common part.
+fn relative_path(from: &Path, target: &Path) -> PathBuf {
+    let (from, to): (Vec<_>, Vec<_>) = (from.components().collect(), target.components().collect());
+    let common = from.iter().zip(&to).take_while(|(a, b)| a == b).count();
+    let mut path: PathBuf = from[common..].iter().map(|_| "..").collect();
+    path.extend(&to[common..]);
+    path
 }
 
 /// The number at dotted `key` of a TOML document (array entries by index).
@@ -247,13 +286,14 @@ pub struct FitReport {
     pub effective_samples: f64,
 }
 
-/// Fits the problem's parameters to `signals`.
-pub fn fit(problem: &Problem, signals: &[Signal], options: &lm::LmOptions) -> Result<FitReport, FitError> {
+/// Fits the problem's parameters to `signals`; `align`: shift the measured times to the run
+/// first ([`alignment_shift`], re-done after each fit until it holds), else take them as they are.
+pub fn fit(problem: &Problem, signals: &[Signal], align: bool, options: &lm::LmOptions) -> Result<FitReport, FitError> {
     let initial: Vec<f64> = problem.parameters.iter().map(|p| p.initial).collect();
     let bounds: Vec<(f64, f64)> = problem.parameters.iter().map(|p| p.bounds).collect();
     let pads = &problem.pad_names;
     let (_, series) = problem.run_at(&initial)?;
-    let mut shift_s = alignment_shift(signals, &series, pads)?;
+    let mut shift_s = if align { alignment_shift(signals, &series, pads)? } else { 0.0 };
     let start_ssr = residuals(signals, &series, pads, shift_s)?.iter().map(|r| r * r).sum::<f64>();
     let (mut values, mut evaluations) = (initial.clone(), 1);
     // The shift found with the scenario's values is biased by their error: fit, re-align with the
@@ -267,7 +307,7 @@ pub fn fit(problem: &Problem, signals: &[Signal], options: &lm::LmOptions) -> Re
         let solution = lm::minimize(&mut objective, &values, &bounds, options)?;
         let (_, series) = problem.run_at(&solution.parameters)?;
         evaluations += solution.evaluations + 1;
-        let aligned = alignment_shift(signals, &series, pads)?;
+        let aligned = if align { alignment_shift(signals, &series, pads)? } else { 0.0 };
         let settled = (aligned - shift_s).abs() <= resolution;
         values.clone_from(&solution.parameters);
         shift_s = aligned;
