@@ -266,13 +266,13 @@ fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()>
         Err(error @ SceneError::Diverged { t_s, .. }) if options.capture_frames => {
             let message = error.to_string();
             let ending = Ending::Diverged { scenario: name, t_s, message: &message };
-            record_divergence(&outputs, name, &Recorded { series: &series, pad_names: &pads, ending });
+            record_divergence(&outputs, name, &Recorded { series: &series, pad_names: &pads, ending, overlay: &[] });
             return Err(anyhow::Error::new(error).context(format!("{}: running", path.display())));
         }
         Err(error) => return Err(error).with_context(|| format!("{}: running", path.display())),
     };
     print_summary(path, &summary);
-    let run = Recorded { series: &series, pad_names: &pads, ending: Ending::Finished(&summary) };
+    let run = Recorded { series: &series, pad_names: &pads, ending: Ending::Finished(&summary), overlay: &[] };
     if let Some(out) = outputs.files {
         let started = std::time::Instant::now();
         let rrd = out.join(format!("{name}.rrd"));
@@ -353,11 +353,20 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
 fn compare_command(path: &Path, measured: &Path, options: pipearm::compare::CompareOptions, out: &Path) -> Result<()> {
     let scenario = Scenario::load(path)?;
     let measured = pipearm::measured::read(measured)?;
-    let compared = pipearm::compare::compare(&scenario.model, &measured, &options)?;
+    let model = &scenario.model;
+    let compared = pipearm::compare::compare(model, &measured, &options)?;
     print!("{}", pipearm::compare::table(&compared.comparison));
-    let json = out.join(format!("{}.compare.json", scenario.model.name));
+    let defs = pipearm::compare::signal_defs(model);
+    let overlay =
+        pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;
+    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let ending = Ending::Finished(&compared.summary);
+    let recorded = Recorded { series: &compared.series, pad_names: &pads, ending, overlay: &overlay };
+    let rrd = out.join(format!("{}.compare.rrd", model.name));
+    save_recording(&rrd, &recorded)?;
+    let json = out.join(format!("{}.compare.json", model.name));
     pipearm::compare::write_json(&json, &compared.comparison)?;
-    println!("wrote {}", json.display());
+    println!("wrote {} and {}", json.display(), rrd.display());
     Ok(())
 }
 

@@ -162,3 +162,33 @@ fn bad_measured_files_name_the_column_and_line_and_write_nothing() {
     assert!(ok && written, "{stderr}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A compare that succeeds writes its report and a recording of the run with the measured series
+/// drawn over the simulated one (under `<plot>/measured`).
+#[test]
+fn a_compare_writes_the_run_with_the_measured_series_over_it() {
+    let scenario = manifest().join("scenarios/default.toml");
+    let model = Scenario::load(&scenario).unwrap().model;
+    let (_, series) = run(&model, None).unwrap();
+    let mut csv = String::from("t[s],tip_deflection.transverse[mm]\n");
+    for (t, d) in series.t_s.iter().zip(&series.tip_deflection_m).step_by(3) {
+        csv += &format!("{t},{}\n", 1e3 * d[1]);
+    }
+    let dir = scratch("overlay");
+    std::fs::write(dir.join("rig.csv"), csv).unwrap();
+    let out = dir.join("out");
+    let output = Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(["compare", scenario.to_str().unwrap(), "--measured"])
+        .arg(dir.join("rig.csv"))
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(out.join("default.compare.json").exists());
+    // The writer does not compress: the entity path is in the file as text.
+    let rrd = std::fs::read(out.join("default.compare.rrd")).unwrap();
+    let needle = b"plots/tip_deflection/transverse/measured";
+    assert!(rrd.windows(needle.len()).any(|w| w == needle), "no measured overlay in the recording");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -28,7 +28,7 @@ use crate::analysis::residual;
 use crate::arm::Fidelity;
 use crate::measured::{Column, Known, Measured, MeasuredError};
 use crate::model::Model;
-use crate::run::{RunSummary, Series, run};
+use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::scene::SceneError;
 pub use signals::{SignalDef, sensor_entity, signal_defs};
 
@@ -134,7 +134,9 @@ pub fn compare(model: &Model, measured: &Measured, options: &CompareOptions) -> 
     let defs = signal_defs(model);
     let known: Vec<Known> = defs.iter().map(|d| Known { name: &d.name, unit: d.unit }).collect();
     let columns = measured.to_si(&known)?;
-    let (summary, series) = run(model, options.fidelity)?;
+    // With the 3D scene, for the recording the measured series are drawn over.
+    let run_options = RunOptions { fidelity: options.fidelity, capture_frames: true, ..RunOptions::default() };
+    let (summary, series) = run_with(model, &run_options)?;
     let simulated: Vec<Vec<f64>> = columns
         .iter()
         .map(|c| defs.iter().find(|d| d.name == c.name).expect("checked by to_si").values(&series))

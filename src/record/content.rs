@@ -42,6 +42,7 @@ pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
         let text = serde_json::to_string_pretty(summary).expect("a summary serializes");
         writer.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
     }
+    writer.chunks.extend(run.overlay.iter().cloned());
     Ok(writer.chunks)
 }
 

@@ -101,6 +101,9 @@ pub struct Recorded<'a> {
     pub pad_names: &'a [String],
     /// How it ended.
     pub ending: Ending<'a>,
+    /// Chunks drawn over the run's own (a measured file's series, `pipearm compare`); empty for a
+    /// plain run.
+    pub overlay: &'a [rerun::log::Chunk],
 }
 
 /// Writes a finished run to `path` (.rrd).
@@ -110,7 +113,7 @@ pub fn write_recording(
     series: &Series,
     pad_names: &[String],
 ) -> Result<(), RecordError> {
-    save_recording(path, &Recorded { series, pad_names, ending: Ending::Finished(summary) })
+    save_recording(path, &Recorded { series, pad_names, ending: Ending::Finished(summary), overlay: &[] })
 }
 
 /// Writes `run` to `path` (.rrd), under a temporary name renamed when complete.
