@@ -19,6 +19,8 @@ use pipearm::run::{RunOptions, RunSummary, run, run_partial};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
+mod cli;
+
 /// Flexible pipe-handling arms and the impacts on their dampeners.
 #[derive(Parser)]
 #[command(version, about)]
@@ -105,7 +107,7 @@ enum Command {
     /// Run a scenario over the Cartesian product of varied keys, in parallel (or one shard of
     /// it): per-case results, a table and a chart of peak contact force against string weight
     /// (docs/sweeps.md). `pipearm sweep merge DIR` joins the shards.
-    Sweep(SweepArgs),
+    Sweep(cli::sweep::SweepArgs),
     /// Run a scenario and set it against measured signals (docs/measurements.md): print a table
     /// per signal and write <out>/<name>.compare.json.
     Compare {
@@ -227,14 +229,17 @@ fn main() -> Result<()> {
         Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
-        Command::Sweep(args) => sweep(args),
+        Command::Sweep(args) => cli::sweep::sweep(args),
         Command::Fit { scenario, measured, params, model, step, shift, out } => {
             let settings = pipearm::fit::RunSettings { fidelity: model, step_s: step };
-            fit_command(&scenario, &measured, &params, (settings, shift), &out)
+            cli::measured::fit_command(&scenario, &measured, &params, (settings, shift), &out)
         }
-        Command::Compare { scenario, measured, shift, model, out } => {
-            compare_command(&scenario, &measured, pipearm::compare::CompareOptions { fidelity: model, shift }, &out)
-        }
+        Command::Compare { scenario, measured, shift, model, out } => cli::measured::compare_command(
+            &scenario,
+            &measured,
+            pipearm::compare::CompareOptions { fidelity: model, shift },
+            &out,
+        ),
     }
 }
 
@@ -348,69 +353,6 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
     Ok(())
 }
 
-/// `pipearm compare`: the measured file is read and checked before the run; nothing is written
-/// unless the comparison completes.
-fn compare_command(path: &Path, measured: &Path, options: pipearm::compare::CompareOptions, out: &Path) -> Result<()> {
-    let scenario = Scenario::load(path)?;
-    let measured = pipearm::measured::read(measured)?;
-    let model = &scenario.model;
-    let compared = pipearm::compare::compare(model, &measured, &options)?;
-    print!("{}", pipearm::compare::table(&compared.comparison));
-    let defs = pipearm::compare::signal_defs(model);
-    let overlay =
-        pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;
-    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
-    let ending = Ending::Finished(&compared.summary);
-    let recorded = Recorded { series: &compared.series, pad_names: &pads, ending, overlay: &overlay };
-    let rrd = out.join(format!("{}.compare.rrd", model.name));
-    save_recording(&rrd, &recorded)?;
-    let json = out.join(format!("{}.compare.json", model.name));
-    pipearm::compare::write_json(&json, &compared.comparison)?;
-    println!("wrote {} and {}", json.display(), rrd.display());
-    Ok(())
-}
-
-/// `pipearm fit`: the fitted values with their intervals; the report and the fitted scenario.
-fn fit_command(
-    path: &Path,
-    measured: &Path,
-    keys: &[String],
-    (settings, shift): (pipearm::fit::RunSettings, bool),
-    out: &Path,
-) -> Result<()> {
-    if let Some(step) = settings.step_s
-        && !(step.is_finite() && step > 0.0 && step <= 0.1)
-    {
-        bail!("--step = {step}: allowed 0 < step <= 0.1 s");
-    }
-    let scenario = Scenario::load(path)?;
-    let measured = pipearm::measured::read(measured)?;
-    let signals = pipearm::fit::signals_of(&measured, &scenario.model)?;
-    let problem = pipearm::fit::Problem::new(path, keys, settings)?;
-    pipearm::export::check_folder(out).context("--out")?;
-    let report = pipearm::fit::fit(&problem, &signals, shift, &pipearm::fit::lm::LmOptions::default())?;
-    println!("{:<32} {:>14} {:>14} {:>31}", "key", "scenario", "fitted", "95 % interval");
-    for p in &report.parameters {
-        let [lo, hi] = p.interval_95;
-        println!("{:<32} {:>14.6e} {:>14.6e} {:>14.6e} .. {:>14.6e}", p.key, p.initial, p.value, lo, hi);
-    }
-    println!(
-        "shift {:.4} s, RMS residual over peak {:.4} -> {:.4}, {} runs, converged: {}",
-        report.shift_s, report.rms_residual[0], report.rms_residual[1], report.evaluations, report.converged
-    );
-    let values: Vec<f64> = report.parameters.iter().map(|p| p.value).collect();
-    let text = problem.scenario_text(&values, out)?;
-    let name = &scenario.model.name;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
-    let json = out.join(format!("{name}.fit.json"));
-    std::fs::write(&json, serde_json::to_string_pretty(&report)?)
-        .with_context(|| format!("writing {}", json.display()))?;
-    let fitted = out.join(format!("{name}.fitted.toml"));
-    std::fs::write(&fitted, text).with_context(|| format!("writing {}", fitted.display()))?;
-    println!("wrote {} and {}", json.display(), fitted.display());
-    Ok(())
-}
-
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.
 fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool) -> Result<()> {
     if scenarios.is_empty() {
@@ -514,94 +456,6 @@ wrote {}/{{points.csv, stability.csv, report.md, chart.svg, chart.png}}",
             dir.display()
         );
     }
-    Ok(())
-}
-
-/// `pipearm sweep`: its arguments, or `merge DIR`.
-#[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
-struct SweepArgs {
-    #[command(subcommand)]
-    merge: Option<SweepMerge>,
-    /// Base scenario file.
-    #[arg(required = true)]
-    scenario: Option<PathBuf>,
-    /// A varied key: KEY=V1,V2,... or KEY=A..B:STEP (B included); repeat for a Cartesian product.
-    #[arg(long, value_name = "KEY=VALUES")]
-    vary: Vec<pipearm::sweep::Vary>,
-    /// Output folder: plan.json, cases/, results.csv, results.json, force_vs_weight.svg.
-    #[arg(long, default_value = "recordings/sweep")]
-    out: PathBuf,
-    /// Worker threads (default: rayon's, one per CPU).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
-    threads: Option<u32>,
-    /// Run only shard I of N (cases with index % N == I, I from 0); merge afterwards.
-    #[arg(long, value_name = "I/N", conflicts_with = "shards")]
-    shard: Option<pipearm::sweep::Shard>,
-    /// Run one of N shards, I from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; merge afterwards.
-    #[arg(long, value_name = "N")]
-    shards: Option<usize>,
-}
-
-#[derive(Subcommand)]
-enum SweepMerge {
-    /// Join a sharded sweep's case files into results.csv, results.json and force_vs_weight.svg.
-    Merge {
-        /// The sweep's output folder.
-        dir: PathBuf,
-    },
-}
-
-fn sweep(args: SweepArgs) -> Result<()> {
-    use pipearm::sweep::{Progress, Request, Shard, merge};
-    if let Some(SweepMerge::Merge { dir }) = args.merge {
-        return print_merged(&merge(&dir)?);
-    }
-    let shard = match (args.shard, args.shards) {
-        (Some(shard), _) => shard,
-        (None, Some(count)) => Shard::from_env(count, |name| std::env::var(name).ok())?,
-        (None, None) => Shard::ALL,
-    };
-    let request = Request {
-        scenario: args.scenario.expect("required by clap"),
-        vary: args.vary,
-        out: args.out,
-        threads: args.threads.map(|n| n as usize),
-        shard,
-    };
-    let bar = indicatif::ProgressBar::new(0)
-        .with_style(indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} cases, {elapsed}, eta {eta}")?);
-    let report = pipearm::sweep::sweep(&request, &|p| match p {
-        Progress::Start { todo } => bar.set_length(todo as u64),
-        Progress::Done { .. } => bar.inc(1),
-    })?;
-    bar.finish_and_clear();
-    println!(
-        "shard {}/{}: ran {}, skipped {} current, of {} cases; case files in {}",
-        shard.index,
-        shard.count,
-        report.ran,
-        report.current,
-        report.cases,
-        request.out.join("cases").display()
-    );
-    match &report.merged {
-        Some(merged) => print_merged(merged),
-        None => {
-            println!("when every shard is done: pipearm sweep merge {}", request.out.display());
-            Ok(())
-        }
-    }
-}
-
-fn print_merged(merged: &pipearm::sweep::Merged) -> Result<()> {
-    println!(
-        "merged {} cases: {}, {}, {}",
-        merged.cases,
-        merged.csv.display(),
-        merged.json.display(),
-        merged.chart.display()
-    );
     Ok(())
 }
 

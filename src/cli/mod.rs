@@ -1,0 +1,4 @@
+//! The CLI's longer commands, each in its own file (the binary's; the library has none of this).
+
+pub mod measured;
+pub mod sweep;
