@@ -1,8 +1,7 @@
 //! `pipearm fit` against "measurements" from a different model: the full FE arm at a fine step,
 //! with a known damping ratio and pad stiffness, 1 % noise and a time shift. The fit runs the
-//! scenario's own reduced model (at 1 ms) and must recover both within 5 %. (Its 95 % intervals,
-//! from the Jacobian and the noise, are narrower than the bias the step leaves: see
-//! docs/measurements.md.)
+//! scenario's own reduced model (at 1 ms, then at 0.5 ms for the numerical uncertainty) and must
+//! recover both within 5 %, its 95 % intervals covering the truth.
 
 use std::path::Path;
 
@@ -72,7 +71,7 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
         let error = (fitted.value - truth).abs() / truth;
         assert!(error < 0.05, "{}: {} against {truth} ({:.1} %)", fitted.key, fitted.value, 100.0 * error);
         let [lo, hi] = fitted.interval_95;
-        assert!(lo < fitted.value && fitted.value < hi, "{}: 95 % interval {lo}..{hi}", fitted.key);
+        assert!(lo <= truth && truth <= hi, "{}: 95 % interval {lo}..{hi} misses {truth}", fitted.key);
     }
     assert!(report.rms_residual[1] < report.rms_residual[0]);
 }
