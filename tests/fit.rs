@@ -6,9 +6,12 @@
 use std::path::Path;
 
 use pipearm::arm::Fidelity;
+use pipearm::compare::signal_defs;
 use pipearm::contact::ForceLaw;
-use pipearm::fit::{Problem, RunSettings, Signal, fit, lm::LmOptions, simulated};
+use pipearm::fit::{Problem, RunSettings, Signal, fit, lm::LmOptions};
 use pipearm::integrate::IntegratorKind;
+use pipearm::model::Model;
+use pipearm::run::Series;
 use pipearm::run::run;
 use pipearm::scenario::Scenario;
 
@@ -19,6 +22,11 @@ const SHIFT_S: f64 = 0.007;
 /// The scenario's model at 1 ms, a 27th of its impacts.
 fn settings() -> RunSettings {
     RunSettings { fidelity: None, step_s: Some(1e-3) }
+}
+
+/// The run's signal `name` at every step.
+fn simulated(model: &Model, name: &str, series: &Series) -> Vec<f64> {
+    signal_defs(model).into_iter().find(|d| d.name == name).unwrap().values(series)
 }
 
 /// Deterministic noise in [−1, 1] (a linear congruential generator): the test needs no crate.
@@ -42,11 +50,10 @@ fn measurements_at(path: &Path, fidelity: Fidelity, step_s: f64) -> Vec<Signal> 
     truth.time.step_s = step_s;
     let (_, series) = run(&truth, Some(fidelity)).unwrap();
     let mut seed = 7;
-    let pads = ["vertical_stop".to_string()];
     ["tip_deflection.transverse", "contact_force.vertical_stop"]
         .into_iter()
         .map(|name| {
-            let (_, values) = simulated(name, &series, &pads).unwrap();
+            let values = simulated(&truth, name, &series);
             let peak = values.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             let kept: Vec<usize> = (0..series.t_s.len()).step_by(6).collect();
             Signal {
@@ -63,7 +70,7 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
     let signals = measurements(&path);
     let keys = ["arm.damping_ratios.0".to_string(), "dampeners.0.law.stiffness".to_string()];
-    let problem = Problem::new(&path, &keys, settings()).unwrap();
+    let problem = Problem::new(&Scenario::load(&path).unwrap(), &keys, settings()).unwrap();
     let report = fit(&problem, &signals, true, &LmOptions::default()).unwrap();
     println!("{}", serde_json::to_string_pretty(&report).unwrap());
     assert!((report.shift_s + SHIFT_S).abs() < 1e-3, "shift {} s against {}", report.shift_s, -SHIFT_S);
@@ -79,12 +86,15 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
 #[test]
 fn a_key_that_cannot_be_fitted_is_refused_with_what_can() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
-    let Err(e) = Problem::new(&path, &["time.step_s".to_string()], settings()) else {
+    let Err(e) = Problem::new(&Scenario::load(&path).unwrap(), &["time.step_s".to_string()], settings()) else {
         panic!("time.step_s was accepted")
     };
     let message = e.to_string();
     assert!(message.contains("time.step_s") && message.contains("dampeners.N.law.stiffness"), "{message}");
-    let Err(e) = Problem::new(&path, &["dampeners.3.law.stiffness".to_string()], settings()) else { panic!() };
+    let Err(e) = Problem::new(&Scenario::load(&path).unwrap(), &["dampeners.3.law.stiffness".to_string()], settings())
+    else {
+        panic!()
+    };
     assert!(e.to_string().contains("dampeners.3.law.stiffness"), "{e}");
 }
 
@@ -115,9 +125,8 @@ fn fit_on_the_command_line_writes_a_report_and_a_scenario_that_loads() {
     let ForceLaw::HuntCrossley { stiffness, .. } = &mut truth.dampeners[0].law else { panic!("default law changed") };
     *stiffness = TRUE_STIFFNESS;
     let (_, series) = run(&truth, None).unwrap();
-    let pads = ["vertical_stop".to_string()];
-    let (_, tip) = simulated("tip_deflection.transverse", &series, &pads).unwrap();
-    let (_, force) = simulated("contact_force.vertical_stop", &series, &pads).unwrap();
+    let tip = simulated(&truth, "tip_deflection.transverse", &series);
+    let force = simulated(&truth, "contact_force.vertical_stop", &series);
     let dir = std::env::temp_dir().join(format!("pipearm-fit-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut csv = String::from("t[s],tip_deflection.transverse[mm],contact_force.vertical_stop[kN]\n");

@@ -50,7 +50,7 @@ pub fn fit_command(
     let scenario = Scenario::load(path)?;
     let measured = pipearm::measured::read(measured)?;
     let signals = pipearm::fit::signals_of(&measured, &scenario.model)?;
-    let problem = pipearm::fit::Problem::new(path, keys, settings)?;
+    let problem = pipearm::fit::Problem::new(&scenario, keys, settings)?;
     pipearm::export::check_folder(out).context("--out")?;
     let report = pipearm::fit::fit(&problem, &signals, shift, &pipearm::fit::lm::LmOptions::default())?;
     println!("{:<32} {:>14} {:>14} {:>31}", "key", "scenario", "fitted", "95 % interval");

@@ -23,6 +23,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::arm::Fidelity;
+use crate::compare::SignalDef;
 use crate::robot::Robot;
 use crate::run::{RunSummary, Series, run};
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
@@ -92,24 +93,12 @@ fn bounds_of(key: &str, initial: f64) -> Result<(f64, f64), String> {
 /// A measured signal.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Signal {
-    /// The simulated signal it is compared with (a name [`simulated`] knows).
+    /// The simulated signal it is compared with (a name of [`crate::compare::signal_defs`]).
     pub name: String,
     /// Times, s, increasing.
     pub t_s: Vec<f64>,
     /// Values, in the signal's unit.
     pub values: Vec<f64>,
-}
-
-/// The simulated signal `name` of a run at each step, if the run has it: a column of the
-/// run's tables (`pipearm run --csv`, [`crate::export`]) named without its unit, as
-/// `pipearm compare` names them: `tip_deflection.transverse`, `contact_force.<pad>`, `hub.angle`,
-/// `<sensor>.<channel>`; with its unit.
-pub fn simulated(name: &str, series: &Series, pad_names: &[String]) -> Option<(String, Vec<f64>)> {
-    let columns = crate::export::columns(series, pad_names, crate::export::Rate::Steps).ok()?;
-    columns.into_iter().find_map(|c| {
-        let (column, unit) = c.header.strip_suffix(']')?.split_once('[')?;
-        (column == name).then(|| (unit.to_string(), c.values))
-    })
 }
 
 /// How the fit runs the scenario: its own fidelity and step unless set.
@@ -140,15 +129,16 @@ pub struct Problem {
     document: toml::Value,
     robot: Robot,
     settings: RunSettings,
-    pad_names: Vec<String>,
+    /// The signals a run of the scenario gives.
+    defs: Vec<SignalDef>,
     /// The parameters, in `--params` order.
     pub parameters: Vec<Parameter>,
 }
 
 impl Problem {
-    /// The scenario at `path` with `keys` to fit, run with `settings`.
-    pub fn new(path: &Path, keys: &[String], settings: RunSettings) -> Result<Self, FitError> {
-        let scenario = Scenario::load(path).map_err(Box::new)?;
+    /// The scenario with `keys` to fit, run with `settings`.
+    pub fn new(scenario: &Scenario, keys: &[String], settings: RunSettings) -> Result<Self, FitError> {
+        let path = &scenario.path;
         let mut document = toml::Value::try_from(&scenario.spec).map_err(|e| {
             Box::new(ScenarioError::Parse { path: path.into(), message: format!("canonical form: {e}") })
         })?;
@@ -170,8 +160,9 @@ impl Problem {
                 Ok(Parameter { key: key.clone(), initial, bounds })
             })
             .collect::<Result<Vec<_>, FitError>>()?;
-        let pad_names = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
-        Ok(Problem { path: path.into(), document, robot: scenario.model.robot, settings, pad_names, parameters })
+        let defs = crate::compare::signal_defs(&scenario.model);
+        let robot = scenario.model.robot.clone();
+        Ok(Problem { path: path.clone(), document, robot, settings, defs, parameters })
     }
 
     /// The step the runs take, s.
@@ -307,10 +298,11 @@ pub struct FitReport {
 pub fn fit(problem: &Problem, signals: &[Signal], align: bool, options: &lm::LmOptions) -> Result<FitReport, FitError> {
     let initial: Vec<f64> = problem.parameters.iter().map(|p| p.initial).collect();
     let bounds: Vec<(f64, f64)> = problem.parameters.iter().map(|p| p.bounds).collect();
-    let pads = &problem.pad_names;
+    let defs = &problem.defs;
     let (_, series) = problem.run_at(&initial)?;
-    let mut shift_s = if align { alignment_shift(signals, &series, pads)? } else { 0.0 };
-    let start_ssr = residuals(signals, &series, pads, shift_s)?.iter().map(|r| r * r).sum::<f64>();
+    let start = simulated(signals, &series, defs)?;
+    let mut shift_s = if align { alignment_shift(signals, &series.t_s, &start) } else { 0.0 };
+    let start_ssr = residuals(signals, &series.t_s, &start, shift_s).iter().map(|r| r * r).sum::<f64>();
     let (mut values, mut evaluations) = (initial.clone(), 1);
     // The shift found with the scenario's values is biased by their error: fit, re-align with the
     // fitted values, and fit again until the shift holds to a tenth of a sample.
@@ -318,12 +310,16 @@ pub fn fit(problem: &Problem, signals: &[Signal], align: bool, options: &lm::LmO
     let solution = loop {
         let mut objective = |values: &[f64]| {
             let (_, series) = problem.run_at(values)?;
-            residuals(signals, &series, pads, shift_s)
+            Ok::<_, FitError>(residuals(signals, &series.t_s, &simulated(signals, &series, defs)?, shift_s))
         };
         let solution = lm::minimize(&mut objective, &values, &bounds, options)?;
+        evaluations += solution.evaluations;
+        if !align {
+            break solution;
+        }
         let (_, series) = problem.run_at(&solution.parameters)?;
-        evaluations += solution.evaluations + 1;
-        let aligned = if align { alignment_shift(signals, &series, pads)? } else { 0.0 };
+        evaluations += 1;
+        let aligned = alignment_shift(signals, &series.t_s, &simulated(signals, &series, defs)?);
         let settled = (aligned - shift_s).abs() <= resolution;
         values.clone_from(&solution.parameters);
         shift_s = aligned;
@@ -335,7 +331,7 @@ pub fn fit(problem: &Problem, signals: &[Signal], align: bool, options: &lm::LmO
     let refined = problem.refined();
     let mut objective = |values: &[f64]| {
         let (_, series) = refined.run_at(values)?;
-        residuals(signals, &series, pads, shift_s)
+        Ok::<_, FitError>(residuals(signals, &series.t_s, &simulated(signals, &series, defs)?, shift_s))
     };
     let fine = lm::minimize(&mut objective, &solution.parameters, &bounds, options)?;
     evaluations += fine.evaluations;
@@ -387,17 +383,28 @@ fn resample(t_sim: &[f64], values: &[f64], t_s: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// Every signal's residuals at its times shifted by `shift_s`, over its measured peak.
-fn residuals(signals: &[Signal], series: &Series, pads: &[String], shift_s: f64) -> Result<Vec<f64>, FitError> {
+/// Each measured signal's simulated twin at every step of `series`.
+fn simulated(signals: &[Signal], series: &Series, defs: &[SignalDef]) -> Result<Vec<Vec<f64>>, FitError> {
+    signals
+        .iter()
+        .map(|signal| {
+            let def = defs.iter().find(|d| d.name == signal.name);
+            def.map(|d| d.values(series)).ok_or_else(|| FitError::Signal(signal.name.clone()))
+        })
+        .collect()
+}
+
+/// Every signal's residuals at its times shifted by `shift_s`, over its measured peak, against
+/// its `simulated` values at the run's times `t_sim`.
+fn residuals(signals: &[Signal], t_sim: &[f64], simulated: &[Vec<f64>], shift_s: f64) -> Vec<f64> {
     let mut out = Vec::new();
-    for signal in signals {
-        let (_, values) = simulated(&signal.name, series, pads).ok_or_else(|| FitError::Signal(signal.name.clone()))?;
+    for (signal, values) in signals.iter().zip(simulated) {
         let times: Vec<f64> = signal.t_s.iter().map(|t| t + shift_s).collect();
-        let sim = resample(&series.t_s, &values, &times);
+        let sim = resample(t_sim, values, &times);
         let peak = signal.values.iter().fold(0.0_f64, |m, v| m.max(v.abs())).max(1e-300);
         out.extend(sim.iter().zip(&signal.values).map(|(s, m)| (s - m) / peak));
     }
-    Ok(out)
+    out
 }
 
 /// The first signal's mean sample interval, s (0 without samples).
@@ -412,24 +419,21 @@ fn sample_interval_s(signals: &[Signal]) -> f64 {
 /// squared difference (the cross-correlation's peak, for signals of equal energy) over shifts of
 /// whole samples within a tenth of the record, refined by a parabola through the best and its
 /// neighbours.
-fn alignment_shift(signals: &[Signal], series: &Series, pads: &[String]) -> Result<f64, FitError> {
-    let Some(first) = signals.first().filter(|s| s.t_s.len() >= 2) else { return Ok(0.0) };
+fn alignment_shift(signals: &[Signal], t_sim: &[f64], simulated: &[Vec<f64>]) -> f64 {
+    let Some(first) = signals.first().filter(|s| s.t_s.len() >= 2) else { return 0.0 };
     let dt = sample_interval_s(signals);
     let reach = (first.t_s.len() / 10) as i64;
-    let score = |k: i64| -> Result<f64, FitError> {
-        let r = residuals(signals, series, pads, k as f64 * dt)?;
-        Ok(-r.iter().map(|x| x * x).sum::<f64>())
-    };
-    let mut best = (0, score(0)?);
+    let score = |k: i64| -residuals(signals, t_sim, simulated, k as f64 * dt).iter().map(|x| x * x).sum::<f64>();
+    let mut best = (0, score(0));
     for k in -reach..=reach {
-        let s = score(k)?;
+        let s = score(k);
         if s > best.1 {
             best = (k, s);
         }
     }
     let (k, s0) = best;
-    let (sm, sp) = (score(k - 1)?, score(k + 1)?);
+    let (sm, sp) = (score(k - 1), score(k + 1));
     let curvature = sm - 2.0 * s0 + sp;
     let offset = if curvature < 0.0 { 0.5 * (sm - sp) / curvature } else { 0.0 };
-    Ok((k as f64 + offset.clamp(-0.5, 0.5)) * dt)
+    (k as f64 + offset.clamp(-0.5, 0.5)) * dt
 }
