@@ -506,8 +506,7 @@ fn summarize(
 ) -> Result<RunSummary, SceneError> {
     let arm = &scene.arm.arm;
     let g = model.physics.gravity_m_s2;
-    let w_static =
-        arm.beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2).map_err(crate::arm::ArmError::from)?;
+    let w_static = arm.beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2)?;
     let length = arm.length_m();
     let payload_kg = model.payload.mass_kg();
     let deflection: Vec<(f64, f64)> =

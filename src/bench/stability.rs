@@ -18,7 +18,7 @@ use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
 use crate::model::{Clamp, Model};
-use crate::robot::{PipeString, pipe_size};
+use crate::robot::{PipeString, StringSpec};
 use crate::run::{RunOptions, run_with};
 use crate::scene::{Scene, SceneError};
 
@@ -97,7 +97,7 @@ pub struct StabilityMap {
 /// The undamped arm of a scenario at `fidelity` (`elements` overrides the robot's mesh).
 pub fn undamped_arm(model: &Model, fidelity: Fidelity) -> Result<ArmModel, SceneError> {
     let spec = model.beam_spec()?;
-    let beam = BeamModel::new(spec).map_err(crate::arm::ArmError::from)?;
+    let beam = BeamModel::new(spec)?;
     let options = ArmOptions { damping_ratios: vec![0.0], ..model.arm_options() };
     Ok(ArmModel::new(beam, fidelity, options)?)
 }
@@ -276,13 +276,13 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
     let models = if quick { vec![auto] } else { dedup(vec![auto, Fidelity::Modal { modes: 8 }]) };
     let mut out = Vec::new();
     // Both sizes are in the compiled-in catalogue (robot::pipes' tests).
-    let sizes = ["2-7/8", "4-1/2"].into_iter().filter_map(|size| pipe_size(size).ok());
-    for pipe in sizes {
-        let size = pipe.size;
+    let one_joint = |size: &str| PipeString::from_spec(&StringSpec { size: size.into(), length_m: None }).ok();
+    for pipe in ["2-7/8", "4-1/2"].into_iter().filter_map(one_joint) {
+        let size = pipe.pipe.size;
         let mut s = model.clone();
         s.integrator = IntegratorKind::default();
         if let Some(held) = s.payload.string_mut() {
-            held.pipe = PipeString { pipe, length_m: pipe.joint_length_m };
+            held.pipe = pipe;
             held.clamp = Clamp::Friction;
         }
         let string_kg = s.payload.mass_kg();

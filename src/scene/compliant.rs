@@ -81,7 +81,7 @@ impl CompliantPads {
 impl ContactSource for CompliantPads {
     fn find_contacts(&mut self, arm: &ArmView, h_s: f64, contacts: &mut Vec<ArmContact>) {
         // Contact queries are most of a step's cost: skip them while every pad is out of reach.
-        if !self.pads.iter().any(|p| p.within_reach(arm, h_s)) {
+        if self.allows_free_step(arm, h_s) {
             return;
         }
         let reach = Self::reach_m(arm, h_s);
@@ -110,7 +110,9 @@ impl ContactSource for CompliantPads {
     }
 
     fn allows_free_step(&self, arm: &ArmView, h_s: f64) -> bool {
-        !self.pads.iter().any(|p| p.within_reach(arm, h_s))
+        // Three times the travel of the arm's fastest point over the step.
+        let travel_m = 3.0 * arm.speed_bound_m_s() * h_s;
+        !self.pads.iter().any(|p| p.within_reach(arm, travel_m))
     }
 
     fn fault(&self) -> Option<String> {

@@ -112,11 +112,10 @@ impl Pad {
             .fold(f64::INFINITY, f64::min)
     }
 
-    /// Whether the arm could reach the pad within a step of `h_s`: its clearance, less what
-    /// stands out beyond the arm's face, against three times the travel of the arm's fastest
-    /// point.
-    pub fn within_reach(&self, arm: &ArmView, h_s: f64) -> bool {
-        self.clearance_m(arm) <= 3.0 * arm.speed_bound_m_s() * h_s + self.watch.margin_m
+    /// Whether the arm could reach the pad within `travel_m`, the fastest point's travel in the
+    /// coming step with margin: its clearance, less what stands out beyond the arm's face.
+    pub fn within_reach(&self, arm: &ArmView, travel_m: f64) -> bool {
+        self.clearance_m(arm) <= travel_m + self.watch.margin_m
     }
 
     /// The arm's effective mass at the pad's station along the arm's normal with the hub held,
