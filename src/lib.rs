@@ -8,6 +8,7 @@
 //! [`scenario`] imports it. Physics functions are pure and in SI units; the conventions are stated
 //! in each module.
 
+pub mod actuator;
 pub mod analysis;
 pub mod arm;
 pub mod beam;

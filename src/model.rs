@@ -7,12 +7,12 @@
 //! integrator and pad laws); it is then the caller's to keep within the ranges the scenario's
 //! checks enforce.
 //!
-//! The drive is a reference motion today, followed exactly by the hub; an actuator that tracks it
-//! belongs in [`Drive`]. The string is a lumped body today; its own dynamics belong in
+//! The drive is a reference motion and the actuator that tracks it ([`crate::actuator`]). The string is a lumped body today; its own dynamics belong in
 //! [`HeldString`].
 
 use serde::{Deserialize, Serialize};
 
+use crate::actuator::{Actuator, ActuatorPlant};
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
 use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass};
 use crate::contact::ForceLaw;
@@ -69,9 +69,13 @@ impl Model {
         ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm_options())
     }
 
-    /// How the arm's hub moves.
+    /// How the arm's hub moves: prescribed by the profile under an ideal drive, else driven by
+    /// the actuator tracking it.
     pub fn hub_drive(&self) -> HubDrive {
-        HubDrive::Prescribed(self.drive.motion.clone())
+        match ActuatorPlant::new(self.drive.actuator.clone(), self.drive.motion.clone(), self.time.step_s) {
+            Some(plant) => HubDrive::Actuated(Box::new(plant)),
+            None => HubDrive::Prescribed(self.drive.motion.clone()),
+        }
     }
 
     /// Time the drive ends, s.
@@ -85,11 +89,13 @@ impl Model {
     }
 }
 
-/// What moves the hub: the reference motion, followed exactly (an ideal drive).
+/// What moves the hub: the reference motion and the actuator that tracks it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Drive {
-    /// The hub's motion, rad.
+    /// The hub's reference motion, rad.
     pub motion: MotionProfile,
+    /// What tracks it ([`Actuator::Ideal`]: the hub follows it exactly).
+    pub actuator: Actuator,
 }
 
 /// What the gripper holds.

@@ -269,7 +269,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion },
+            drive: Drive { motion, actuator: crate::actuator::Actuator::Ideal },
             dampeners: dampeners?,
             contact: spec.contact,
             fidelity: match spec.model {

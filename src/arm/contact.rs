@@ -109,6 +109,13 @@ impl ArmContact {
         d
     }
 
+    /// The normal's lever about the pivot at `state`, m: the moment per newton, and how fast the
+    /// penetration closes per radian of hub rotation.
+    pub fn lever_m(&self, state: &ContactState) -> f64 {
+        let n = self.contact.normal_world;
+        state.point_m[0] * n[1] - state.point_m[1] * n[0]
+    }
+
     /// (∂F/∂δ, ∂F/∂δ̇) at a state.
     pub fn stiffness_damping(&self, state: &ContactState) -> (f64, f64) {
         self.contact.law.derivatives(state.depth_m, state.rate_m_s, self.contact.impact_speed_m_s)

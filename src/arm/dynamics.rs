@@ -5,6 +5,7 @@ use std::cell::Cell;
 use nalgebra::{DMatrix, DVector};
 
 use super::{ArmContact, ArmModel, Energies};
+use crate::actuator::ActuatorPlant;
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -15,6 +16,24 @@ pub enum HubDrive {
     Prescribed(MotionProfile),
     /// θ integrated under a constant applied torque, N·m. Coordinates: [θ, q].
     Free { torque_n_m: f64 },
+    /// θ integrated under an actuator tracking a reference. Coordinates: [θ, q, the actuator's
+    /// own] ([`ActuatorPlant`]).
+    Actuated(Box<ActuatorPlant>),
+}
+
+impl HubDrive {
+    /// Whether θ is a coordinate (a free or actuated hub) rather than prescribed.
+    pub fn hub_is_free(&self) -> bool {
+        !matches!(self, HubDrive::Prescribed(_))
+    }
+
+    /// The actuator, if one drives the hub.
+    pub fn plant(&self) -> Option<&ActuatorPlant> {
+        match self {
+            HubDrive::Actuated(plant) => Some(plant),
+            _ => None,
+        }
+    }
 }
 
 /// External loads already mapped to generalized forces, held over a step.
@@ -164,12 +183,7 @@ impl<'a> ArmSystem<'a> {
 
     /// Moment of gravity about the pivot on the deformed arm, N·m.
     fn gravity_moment(&self, s: f64, c: f64, q: &DVector<f64>, g: f64) -> f64 {
-        let a = self.arm;
-        // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
-        let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
-        -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
-            + g * s * dot(&a.transverse_mass, q.as_slice())
-            + foreshortening
+        self.arm.gravity_moment_n_m((s, c), q, g)
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
@@ -229,6 +243,8 @@ impl<'a> ArmSystem<'a> {
     ) -> f64 {
         match self.drive {
             HubDrive::Free { torque_n_m } => *torque_n_m,
+            // The actuator's torque depends on its own coordinates: the simulation reports it.
+            HubDrive::Actuated(_) => f64::NAN,
             HubDrive::Prescribed(_) => {
                 let inertia = pivot_inertia * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
                 inertia - self.hub_force_at(hub, trig, q, qd, 0.0)
@@ -251,11 +267,86 @@ impl<'a> ArmSystem<'a> {
     }
 }
 
+impl ArmSystem<'_> {
+    /// Torque applied at the hub by a free hub's constant torque or its actuator, N·m.
+    fn applied_torque_n_m(&self, x: &DVector<f64>, v: &DVector<f64>) -> f64 {
+        match self.drive {
+            HubDrive::Prescribed(_) => 0.0,
+            HubDrive::Free { torque_n_m } => *torque_n_m,
+            HubDrive::Actuated(plant) => {
+                let own = 1 + self.arm.elastic_dofs();
+                plant.hub_torque_n_m((x[0], v[0]), &x.as_slice()[own..], &v.as_slice()[own..])
+            }
+        }
+    }
+
+    /// Each pad contact's stiffness and damping over [θ, q]: k w wᵀ and c w wᵀ, w = (lever about
+    /// the pivot, direction over q); without the θ terms every strike of a free hub would cost
+    /// Newton its convergence.
+    fn add_free_hub_contact_tangents(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        k: &mut DMatrix<f64>,
+        c: &mut DMatrix<f64>,
+    ) {
+        let n = q.len();
+        for contact in self.contacts {
+            let state = contact.state(hub, q, qd);
+            let (k_c, c_c) = contact.stiffness_damping(&state);
+            if k_c == 0.0 && c_c == 0.0 {
+                continue;
+            }
+            let mut w = DVector::zeros(n + 1);
+            w[0] = contact.lever_m(&state);
+            contact.add_direction(&state, 1.0, &mut w.as_mut_slice()[1..]);
+            k.view_mut((0, 0), (n + 1, n + 1)).ger(k_c, &w, &w, 1.0);
+            c.view_mut((0, 0), (n + 1, n + 1)).ger(c_c, &w, &w, 1.0);
+        }
+    }
+
+    /// The actuator's tangents, by central differences over the hub's (θ, θ̇) and its own
+    /// coordinates (a handful: cheaper than deriving each machine's by hand, and exact enough
+    /// for Newton).
+    fn add_actuator_tangents(&self, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
+        let Some(plant) = self.drive.plant() else { return };
+        let own = 1 + self.arm.elastic_dofs();
+        let m = plant.dofs();
+        // Outputs: the hub torque (row 0) and the plant's own forces (rows own..).
+        let rows: Vec<usize> = std::iter::once(0).chain(own..own + m).collect();
+        let eval = |x: &[f64], v: &[f64], out: &mut [f64]| {
+            out[0] = plant.hub_torque_n_m((x[0], v[0]), &x[own..], &v[own..]);
+            plant.forces((x[0], v[0]), &x[own..], &v[own..], &mut out[1..]);
+        };
+        let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
+        let (mut plus, mut minus) = (vec![0.0; m + 1], vec![0.0; m + 1]);
+        for (is_rate, target) in [(false, &mut *k), (true, &mut *c)] {
+            for &j in &rows {
+                let values = if is_rate { &mut vp } else { &mut xp };
+                let x0 = values[j];
+                let h = 1e-7 * x0.abs().max(1e-3);
+                values[j] = x0 + h;
+                eval(&xp, &vp, &mut plus);
+                let values = if is_rate { &mut vp } else { &mut xp };
+                values[j] = x0 - h;
+                eval(&xp, &vp, &mut minus);
+                let values = if is_rate { &mut vp } else { &mut xp };
+                values[j] = x0;
+                for (r, &i) in rows.iter().enumerate() {
+                    target[(i, j)] -= (plus[r] - minus[r]) / (2.0 * h);
+                }
+            }
+        }
+    }
+}
+
 impl Dynamics for ArmSystem<'_> {
     fn dofs(&self) -> usize {
         match self.drive {
             HubDrive::Prescribed(_) => self.arm.elastic_dofs(),
             HubDrive::Free { .. } => self.arm.elastic_dofs() + 1,
+            HubDrive::Actuated(plant) => self.arm.elastic_dofs() + 1 + plant.dofs(),
         }
     }
 
@@ -263,13 +354,18 @@ impl Dynamics for ArmSystem<'_> {
         let n = self.arm.elastic_dofs();
         match self.drive {
             HubDrive::Prescribed(_) => m.copy_from(&self.arm.mass),
-            HubDrive::Free { .. } => {
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let q = x.rows(1, n).into_owned();
                 let s = self.coupling(&q);
                 m[(0, 0)] = self.pivot_inertia(&q);
                 m.view_mut((1, 0), (n, 1)).copy_from(&s);
                 m.view_mut((0, 1), (1, n)).copy_from(&s.transpose());
                 m.view_mut((1, 1), (n, n)).copy_from(&self.arm.mass);
+                if let Some(plant) = self.drive.plant() {
+                    for i in 0..plant.dofs() {
+                        m[(1 + n + i, 1 + n + i)] = plant.mass(i);
+                    }
+                }
             }
         }
     }
@@ -286,12 +382,17 @@ impl Dynamics for ArmSystem<'_> {
                 add_product(f, -hub.accel_rad_s2, &self.arm.gyroscopic, x.as_slice());
                 self.add_elastic_forces(&hub, trig, x, v, f);
             }
-            HubDrive::Free { torque_n_m } => {
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let (hub, q, qd) = self.split_free_hub(x, v);
-                f[0] = self.hub_force(&hub, &q, &qd, *torque_n_m);
-                let elastic = &mut f.as_mut_slice()[1..];
+                let n = q.len();
+                f[0] = self.hub_force(&hub, &q, &qd, self.applied_torque_n_m(x, v));
+                let (elastic, own) = f.as_mut_slice()[1..].split_at_mut(n);
                 elastic.fill(0.0);
                 self.add_elastic_forces(&hub, hub.angle_rad.sin_cos(), &q, &qd, elastic);
+                if let Some(plant) = self.drive.plant() {
+                    let (x_own, v_own) = (&x.as_slice()[1 + n..], &v.as_slice()[1 + n..]);
+                    plant.forces((x[0], v[0]), x_own, v_own, own);
+                }
             }
         }
     }
@@ -302,7 +403,7 @@ impl Dynamics for ArmSystem<'_> {
                 out.gemv(1.0, &self.arm.mass_inverse, rhs, 0.0);
                 true
             }
-            HubDrive::Free { .. } => false,
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => false,
         }
     }
 
@@ -333,19 +434,11 @@ impl Dynamics for ArmSystem<'_> {
         let (hub, q, qd) = self.split_free_hub(x, v);
         let (w, g) = (hub.rate_rad_s, a.options.gravity_m_s2);
         let (s, co) = hub.angle_rad.sin_cos();
-        let mut k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
-        let mut c_qq = &a.damping + 2.0 * w * &a.gyroscopic;
-        for contact in self.contacts {
-            let state = contact.state(&hub, &q, &qd);
-            let (k_c, c_c) = contact.stiffness_damping(&state);
-            if k_c != 0.0 || c_c != 0.0 {
-                let direction = contact.direction(&state);
-                let ww = &direction * direction.transpose();
-                k_qq += k_c * &ww;
-                c_qq += c_c * ww;
-            }
-        }
+        let k_qq = &a.stiffness - w * w * &a.spin_mass - s * &a.gravity_stiffness;
+        let c_qq = &a.damping + 2.0 * w * &a.gyroscopic;
         let n = q.len();
+        k.fill(0.0);
+        c.fill(0.0);
         let spin_arm = &a.axial_moment + &a.spin_mass * &q;
         let kg_q = &a.gravity_stiffness * &q;
         k.view_mut((1, 1), (n, n)).copy_from(&k_qq);
@@ -361,6 +454,12 @@ impl Dynamics for ArmSystem<'_> {
         k.view_mut((0, 1), (1, n)).copy_from(&k_theta_q.transpose());
         c[(0, 0)] = 2.0 * dot(&spin_arm, qd.as_slice());
         c.view_mut((0, 1), (1, n)).copy_from(&(2.0 * w * spin_arm).transpose());
+        self.add_free_hub_contact_tangents(&hub, &q, &qd, k, c);
+        self.add_actuator_tangents(x, v, k, c);
+    }
+
+    fn first_order_dofs(&self) -> usize {
+        self.drive.plant().map_or(0, |p| p.first_order_dofs())
     }
 
     fn is_linear(&self) -> bool {
@@ -388,5 +487,18 @@ fn add_product(f: &mut [f64], alpha: f64, a: &DMatrix<f64>, x: &[f64]) {
     for (column, xj) in a.as_slice().chunks_exact(f.len().max(1)).zip(x) {
         let scale = alpha * xj;
         f.iter_mut().zip(column).for_each(|(fi, aij)| *fi += scale * aij);
+    }
+}
+
+impl ArmModel {
+    /// Moment of gravity about the pivot on the arm deformed by `q`, with (sin θ, cos θ) of the
+    /// hub angle and gravity `g`, N·m.
+    pub(crate) fn gravity_moment_n_m(&self, (s, c): (f64, f64), q: &DVector<f64>, g: f64) -> f64 {
+        let a = self;
+        // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
+        let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
+        -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
+            + g * s * dot(&a.transverse_mass, q.as_slice())
+            + foreshortening
     }
 }

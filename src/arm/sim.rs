@@ -6,6 +6,7 @@ use nalgebra::DVector;
 
 use super::dynamics::{HubCache, dot};
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
+use crate::actuator::{ActuatorOutputs, ActuatorPlant};
 use crate::drive::DriveState;
 use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
 
@@ -48,6 +49,8 @@ pub struct ArmSample {
     pub energies: Energies,
     /// Elastic coordinates q.
     pub q: DVector<f64>,
+    /// What the actuator reports, if one drives the hub.
+    pub actuator: Option<ActuatorOutputs>,
 }
 
 /// The arm, its drive and an integrator, stepped in time.
@@ -74,14 +77,44 @@ pub struct ArmSimulation {
 impl ArmSimulation {
     /// Starts at t = 0 at rest, the arm in static equilibrium under gravity at the start angle
     /// (a lift begins from the arm sagging on its hub, not from an undeformed arm dropped).
+    /// An actuated hub starts at rest at its reference's start angle (less the drive's static
+    /// lag), held there by the actuator ([`ActuatorPlant::holding`]).
     pub fn new(arm: ArmModel, drive: HubDrive, integrator: IntegratorKind) -> Result<Self, ArmError> {
         let n = arm.elastic_dofs();
-        let start_rad = match &drive {
-            HubDrive::Prescribed(p) => p.sample(0.0).angle_rad,
+        let start_rad = match drive {
+            HubDrive::Prescribed(ref p) => p.sample(0.0).angle_rad,
             HubDrive::Free { .. } => 0.0,
+            HubDrive::Actuated(plant) => return Self::held_by(arm, plant, integrator),
         };
         let q0 = arm.static_deflection(start_rad)?;
         Self::with_initial(arm, drive, integrator, q0, DVector::zeros(n))
+    }
+
+    /// Starts an actuated hub in static equilibrium, its actuator holding it.
+    fn held_by(arm: ArmModel, mut plant: Box<ActuatorPlant>, integrator: IntegratorKind) -> Result<Self, ArmError> {
+        let reference_rad = plant.reference.sample(0.0).angle_rad;
+        let g = arm.options.gravity_m_s2;
+        let (mut angle, mut q0, mut torque) = (reference_rad, DVector::zeros(0), 0.0);
+        // The lag depends on the torque held and the torque on the angle: a fixed point that a
+        // stiff drive reaches in a few passes.
+        for _ in 0..6 {
+            q0 = arm.static_deflection(angle)?;
+            torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
+            angle = reference_rad - plant.static_lag_rad(torque);
+        }
+        let (own_x, own_v) = plant.holding(angle, torque).map_err(|why| ArmError::InvalidParameter {
+            name: "actuator".into(),
+            value: torque,
+            allowed: why,
+        })?;
+        let n = arm.elastic_dofs();
+        let x = DVector::from_iterator(
+            1 + n + own_x.len(),
+            std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied()),
+        );
+        let mut v = DVector::zeros(x.len());
+        v.rows_mut(1 + n, own_v.len()).copy_from(&own_v);
+        Self::from_coordinates(arm, HubDrive::Actuated(plant), integrator, x, v)
     }
 
     /// Starts at t = 0 from elastic coordinates `q0` and rates `qd0`.
@@ -103,10 +136,29 @@ impl ArmSimulation {
         let (x, v) = match &drive {
             HubDrive::Prescribed(_) => (q0, qd0),
             HubDrive::Free { .. } => (prepend(0.0, &q0), prepend(0.0, &qd0)),
+            HubDrive::Actuated(_) => {
+                return Err(ArmError::InvalidParameter {
+                    name: "initial q".into(),
+                    value: f64::NAN,
+                    allowed: "an actuated hub starts held by its actuator (ArmSimulation::new)".into(),
+                });
+            }
         };
+        Self::from_coordinates(arm, drive, integrator, x, v)
+    }
+
+    /// Starts at t = 0 from the integrator's coordinates `x` and rates `v`.
+    fn from_coordinates(
+        arm: ArmModel,
+        drive: HubDrive,
+        integrator: IntegratorKind,
+        x: DVector<f64>,
+        v: DVector<f64>,
+    ) -> Result<Self, ArmError> {
+        let n = arm.elastic_dofs();
         let (rate_jumps, breakpoints_s) = match &drive {
             HubDrive::Prescribed(p) => (p.rate_jumps(), p.breakpoints_s()),
-            HubDrive::Free { .. } => (Vec::new(), Vec::new()),
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => (Vec::new(), Vec::new()),
         };
         let load = GeneralizedLoad::zero(n);
         let hub = HubCache::default();
@@ -154,9 +206,13 @@ impl ArmSimulation {
         &self.state
     }
 
-    /// Advances by `h_s` seconds, splitting the step at any jump of the drive's rate.
+    /// Advances by `h_s` seconds, splitting the step at any jump of the drive's rate and at its
+    /// controller's samples.
     pub fn step(&mut self, h_s: f64) -> Result<(), ArmError> {
         let t_end = self.state.t + h_s;
+        if self.drive.plant().is_some() {
+            return self.step_actuated(t_end);
+        }
         let next_jump = self.rate_jumps.first().map(|j| j.0).filter(|&tj| tj <= t_end);
         if let Some(tj) = next_jump {
             self.advance(tj - self.state.t)?;
@@ -164,6 +220,43 @@ impl ArmSimulation {
             return self.advance(t_end - self.state.t);
         }
         self.advance(h_s)
+    }
+
+    /// Advances an actuated hub to `t_end`, sampling its controller wherever a sample falls due.
+    fn step_actuated(&mut self, t_end: f64) -> Result<(), ArmError> {
+        let tiny = 1e-9 * (t_end - self.state.t).abs().max(1e-12);
+        loop {
+            self.sample_controller();
+            let next_sample = self.drive.plant().map_or(t_end, |p| p.next_sample_s());
+            let stop = if next_sample < t_end - tiny { next_sample } else { t_end };
+            self.advance(stop - self.state.t)?;
+            if stop >= t_end - tiny {
+                return Ok(());
+            }
+        }
+    }
+
+    /// Samples an actuator's controller if a sample is due; the held output changes the
+    /// actuator's own forces, so their accelerations are brought up to date (their mass is
+    /// diagonal and apart from the arm's: exact, no solve).
+    fn sample_controller(&mut self) {
+        let own = 1 + self.arm.elastic_dofs();
+        let HubDrive::Actuated(plant) = &mut self.drive else { return };
+        let s = &mut self.state;
+        let hub = (s.x[0], s.v[0]);
+        let (x, v) = (&s.x.as_slice()[own..], &s.v.as_slice()[own..]);
+        let mut before = vec![0.0; plant.dofs()];
+        plant.forces(hub, x, v, &mut before);
+        let output = plant.controller.output;
+        plant.sample_if_due(s.t, hub, x, v);
+        if plant.controller.output == output {
+            return;
+        }
+        let mut after = vec![0.0; plant.dofs()];
+        plant.forces(hub, x, v, &mut after);
+        for (i, (b, a)) in before.iter().zip(&after).enumerate() {
+            s.a[own + i] += (a - b) / plant.mass(i);
+        }
     }
 
     /// Advances by a step chosen by `control` from the integrator's local error estimate, at most
@@ -200,9 +293,10 @@ impl ArmSimulation {
     fn local_tip_error_m(&self) -> Option<f64> {
         let error = self.integrator.local_error()?;
         let [ru, rv, _] = self.arm.tip_rows();
+        let n = self.arm.elastic_dofs();
         let (hub_error_rad, q_error) = match self.drive {
             HubDrive::Prescribed(_) => (0.0, error.as_slice()),
-            HubDrive::Free { .. } => (error[0], &error.as_slice()[1..]),
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => (error[0], &error.as_slice()[1..1 + n]),
         };
         Some(dot(ru, q_error).abs().max((dot(rv, q_error) + self.arm.length_m() * hub_error_rad).abs()))
     }
@@ -285,7 +379,7 @@ impl ArmSimulation {
         let s = &self.state;
         match &self.drive {
             HubDrive::Prescribed(profile) => (self.hub.at(profile, s.t).0, Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
-            HubDrive::Free { .. } => {
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let (mut hub, q, qd) = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub)
                     .split_free_hub(&s.x, &s.v);
                 hub.accel_rad_s2 = s.a[0];
@@ -300,7 +394,9 @@ impl ArmSimulation {
         let a = &self.state.a;
         match self.drive {
             HubDrive::Prescribed(_) => Cow::Borrowed(a),
-            HubDrive::Free { .. } => Cow::Owned(a.rows(1, a.len() - 1).into_owned()),
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => {
+                Cow::Owned(a.rows(1, self.arm.elastic_dofs()).into_owned())
+            }
         }
     }
 
@@ -318,7 +414,14 @@ impl ArmSimulation {
         let w = hub.rate_rad_s;
         // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
         let vel_body = [ud - w * v, vd + w * (l + u)];
-        let (drive_torque_n_m, energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
+        let (mut drive_torque_n_m, energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
+        let actuator = self.drive.plant().map(|plant| {
+            let own = 1 + self.arm.elastic_dofs();
+            plant.outputs(s.t, (s.x[0], s.v[0]), &s.x.as_slice()[own..], &s.v.as_slice()[own..])
+        });
+        if let Some(outputs) = &actuator {
+            drive_torque_n_m = outputs.hub_torque_n_m;
+        }
         ArmSample {
             t_s: s.t,
             hub,
@@ -329,6 +432,7 @@ impl ArmSimulation {
             drive_torque_n_m,
             energies,
             q: q.into_owned(),
+            actuator,
         }
     }
 }

@@ -2,7 +2,7 @@
 //! mirroring it, and chaining constant-jerk pieces into the segments a profile is stored as.
 
 /// Kinematic state of the hub at one instant.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct DriveState {
     /// Hub angle, rad.
     pub angle_rad: f64,

@@ -12,7 +12,7 @@
 
 use nalgebra::{DMatrix, DVector};
 
-use super::{Dynamics, IntegrateError, Integrator, State, check_finite, solve_in_place};
+use super::{Dynamics, IntegrateError, Integrator, State, finish_step, solve_in_place};
 
 /// Generalized-α, HHT-α or Newmark, solved by Newton's method on ẍ_{n+1}.
 #[derive(Debug, Clone)]
@@ -165,6 +165,8 @@ impl Integrator for GeneralizedAlpha {
 
     fn step(&mut self, sys: &dyn Dynamics, s: &mut State, h: f64) -> Result<(), IntegrateError> {
         let n = sys.dofs();
+        // The first-order states' positions are unused: left out of the convergence test's scale.
+        let second_order = n - sys.first_order_dofs().min(n);
         let error_factor = self.error_coefficient() * h * h;
         let w = &mut self.work;
         w.resize(n);
@@ -217,7 +219,9 @@ impl Integrator for GeneralizedAlpha {
                 w.acc[i] -= w.f[i];
                 correction_sq += w.f[i] * w.f[i];
                 acc_sq += w.acc[i] * w.acc[i];
-                x_sq += w.x1[i] * w.x1[i];
+                if i < second_order {
+                    x_sq += w.x1[i] * w.x1[i];
+                }
             }
             residual_norm = correction_sq.sqrt();
             // Converged when the correction is small against the acceleration, or when what it
@@ -235,7 +239,7 @@ impl Integrator for GeneralizedAlpha {
                 s.a.copy_from(&w.acc);
                 s.t = t1;
                 self.has_history = true;
-                return check_finite(s);
+                return finish_step(sys, s);
             }
         }
         Err(IntegrateError::NoConvergence { t: t1, residual: residual_norm })

@@ -2,7 +2,7 @@
 
 use nalgebra::DVector;
 
-use super::{AccelerationSolver, Dynamics, IntegrateError, Integrator, State, check_finite};
+use super::{AccelerationSolver, Dynamics, IntegrateError, Integrator, State, finish_step};
 
 /// Semi-implicit Euler: ẋ_{n+1} = ẋ_n + h ẍ(x_n, ẋ_n), x_{n+1} = x_n + h ẋ_{n+1}.
 /// Symplectic; stable on an undamped mode while ωh ≤ 2.
@@ -41,7 +41,7 @@ impl Integrator for SymplecticEuler {
         s.v += h * &s.a;
         s.x += h * &s.v;
         s.t += h;
-        check_finite(s)?;
+        finish_step(sys, s)?;
         s.refresh_acceleration(sys)
     }
 }
@@ -55,7 +55,7 @@ impl Integrator for ExplicitEuler {
         s.x += h * &s.v;
         s.v += h * &s.a;
         s.t += h;
-        check_finite(s)?;
+        finish_step(sys, s)?;
         s.refresh_acceleration(sys)
     }
 }
@@ -92,7 +92,7 @@ impl Integrator for Rk4 {
             s.v[i] += c * (s.a[i] + 2.0 * w.k[0][i] + 2.0 * w.k[1][i] + w.k[2][i]);
         }
         s.t += h;
-        check_finite(s)?;
+        finish_step(sys, s)?;
         w.solver.solve(sys, s.t, &s.x, &s.v, &mut s.a)
     }
 }

@@ -43,6 +43,13 @@ pub trait Dynamics {
     fn is_linear(&self) -> bool {
         false
     }
+    /// How many of the last coordinates are first-order states z (ż = g(t, x, ẋ)): carried in
+    /// ẋ, with ẍ their rate and a unit mass; their x is unused (no force depends on it) and is
+    /// held at zero. Each integrator's velocity update then advances them: the implicit methods
+    /// solve them in the same Newton iteration as the second-order coordinates.
+    fn first_order_dofs(&self) -> usize {
+        0
+    }
 }
 
 /// Central-difference tangents of `sys.forces`.
@@ -217,6 +224,15 @@ impl IntegratorKind {
             IntegratorKind::ExplicitEuler => Box::new(ExplicitEuler),
         })
     }
+}
+
+/// Ends a step: the first-order states' unused positions back to zero (they would otherwise
+/// accumulate the states' integrals), then [`check_finite`].
+pub(crate) fn finish_step(sys: &dyn Dynamics, state: &mut State) -> Result<(), IntegrateError> {
+    let n = state.x.len();
+    let first_order = sys.first_order_dofs().min(n);
+    state.x.as_mut_slice()[n - first_order..].fill(0.0);
+    check_finite(state)
 }
 
 pub(crate) fn check_finite(state: &State) -> Result<(), IntegrateError> {

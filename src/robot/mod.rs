@@ -168,6 +168,10 @@ pub struct LiftJoint {
     /// Fastest rate the drive can turn the joint, rad/s (the URDF limit's velocity): a scenario
     /// whose drive is faster is refused.
     pub velocity_rad_s: f64,
+    /// The hydraulic cylinder that can turn it (`<pipearm:cylinder>` on the joint).
+    pub cylinder: Option<crate::actuator::Cylinder>,
+    /// The servo motor and gearbox that can turn it (`<pipearm:servo>` on the joint).
+    pub servo: Option<crate::actuator::ServoMachine>,
 }
 
 /// A robot read from URDF.

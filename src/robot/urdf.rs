@@ -209,6 +209,8 @@ impl Context<'_> {
             limits_rad: (lower, upper),
             effort_n_m: effort,
             velocity_rad_s: velocity,
+            cylinder: None,
+            servo: None,
         };
         Ok((lift, joint.parent.link.clone()))
     }

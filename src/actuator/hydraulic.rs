@@ -1,0 +1,245 @@
+//! A hydraulic drive: a double-acting cylinder between a base pin and an arm pin, a four-way
+//! proportional valve, a relief valve per chamber, and a position controller on the joint angle.
+//!
+//! Cylinder length s(θ) = |R(θ) a − b| (a the arm pin in the hub frame, b the base pin, both
+//! from the pivot); its moment arm ds/dθ turns the rod force F into the hub torque F ds/dθ.
+//! With A₁ the cap-side and A₂ the rod-side area, V₁ = V₁₀ + A₁ (s − s_closed) and
+//! V₂ = V₂₀ + A₂ (s_closed + stroke − s) the chamber volumes (V₁₀, V₂₀ dead volumes of cylinder
+//! and hoses), β the oil's bulk modulus, Merritt's chamber equations:
+//!
+//! ```text
+//! ṗ₁ = β / V₁ (Q₁ − A₁ ṡ − Q_r1)        ṗ₂ = β / V₂ (Q₂ + A₂ ṡ − Q_r2)
+//! F = p₁ A₁ − p₂ A₂ + F_end(s, ṡ)
+//! ```
+//!
+//! The valve (critically lapped, matched, symmetric) with spool opening x ∈ [−1, 1] and flow
+//! gain K = Q_rated / √Δp_rated per land (Q = C_d A √(2 Δp / ρ) with C_d A √(2/ρ) = K at full
+//! opening):
+//!
+//! ```text
+//! x ≥ 0:  Q₁ = K x √(p_s − p₁),   Q₂ = −K x √(p₂ − p_t)
+//! x < 0:  Q₁ = K x √(p₁ − p_t),   Q₂ = −K x √(p_s − p₂)
+//! τ_s ẋ = x_cmd − x
+//! ```
+//!
+//! √ is taken signed and rounded off below a hundredth of the rated drop (Δp/(Δp² + δ²)^¼), so
+//! that the flow and its derivative stay finite where a chamber's pressure crosses supply or
+//! tank. A relief valve per chamber passes the valve's rated flow at 5 % over its setting; a
+//! check valve lets oil in from tank below tank pressure (no cavitation). Beyond the stroke the
+//! rod meets the end cap: a stiff spring and damper ([`END_STOP_STIFFNESS_N_M`]).
+//!
+//! The controller's output is the spool command; its velocity feed-forward is the opening whose
+//! flow at half the supply-to-tank drop moves the rod at the reference's speed, times
+//! `velocity_feedforward` (1: the full estimate).
+
+use serde::{Deserialize, Serialize};
+
+use super::ControllerGains;
+
+/// Stiffness of the cylinder's end stops, N/m (steel on steel through a cushion).
+pub const END_STOP_STIFFNESS_N_M: f64 = 1e9;
+/// Damping of the cylinder's end stops, N·s/m.
+pub const END_STOP_DAMPING_N_S_M: f64 = 1e6;
+
+/// The cylinder and its hoses, from the URDF's `<pipearm:cylinder>` on the lift joint.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Cylinder {
+    /// Base pin (x, y) from the pivot in the base frame, m.
+    pub base_pin_m: [f64; 2],
+    /// Arm pin (x along the arm, y across) from the pivot in the hub frame, m.
+    pub arm_pin_m: [f64; 2],
+    /// Bore (piston diameter), m.
+    pub bore_m: f64,
+    /// Rod diameter, m (< bore).
+    pub rod_m: f64,
+    /// Pin-to-pin length fully retracted, m.
+    pub closed_length_m: f64,
+    /// Stroke, m.
+    pub stroke_m: f64,
+    /// Oil volume on the cap side when retracted (cylinder dead volume and hose), m³.
+    pub cap_dead_volume_m3: f64,
+    /// Oil volume on the rod side when extended, m³.
+    pub rod_dead_volume_m3: f64,
+}
+
+impl Cylinder {
+    /// Cap-side area A₁, m².
+    pub fn cap_area_m2(&self) -> f64 {
+        std::f64::consts::FRAC_PI_4 * self.bore_m.powi(2)
+    }
+
+    /// Rod-side (annulus) area A₂, m².
+    pub fn rod_area_m2(&self) -> f64 {
+        std::f64::consts::FRAC_PI_4 * (self.bore_m.powi(2) - self.rod_m.powi(2))
+    }
+
+    /// Pin-to-pin length s (m) and moment arm ds/dθ (m/rad) at hub angle `angle_rad`.
+    pub fn length_and_arm(&self, angle_rad: f64) -> (f64, f64) {
+        let (s, c) = angle_rad.sin_cos();
+        let [ax, ay] = self.arm_pin_m;
+        let pin = [c * ax - s * ay, s * ax + c * ay];
+        let d = [pin[0] - self.base_pin_m[0], pin[1] - self.base_pin_m[1]];
+        let length = d[0].hypot(d[1]);
+        // d/dθ of the pin is (−pin_y, pin_x).
+        (length, (pin[0] * d[1] - pin[1] * d[0]) / length)
+    }
+
+    /// Chamber volumes (cap, rod) at length `length_m`, m³.
+    pub fn volumes_m3(&self, length_m: f64) -> (f64, f64) {
+        let extension = length_m - self.closed_length_m;
+        (
+            self.cap_dead_volume_m3 + self.cap_area_m2() * extension,
+            self.rod_dead_volume_m3 + self.rod_area_m2() * (self.stroke_m - extension),
+        )
+    }
+
+    /// Force of the end caps on the rod (positive: extending), N.
+    pub fn end_stop_force_n(&self, length_m: f64, rate_m_s: f64) -> f64 {
+        let extension = length_m - self.closed_length_m;
+        let (k, c) = (END_STOP_STIFFNESS_N_M, END_STOP_DAMPING_N_S_M);
+        if extension < 0.0 {
+            (-k * extension - c * rate_m_s).max(0.0)
+        } else if extension > self.stroke_m {
+            (-k * (extension - self.stroke_m) - c * rate_m_s).min(0.0)
+        } else {
+            0.0
+        }
+    }
+
+    /// Oil spring of the locked cylinder, β (A₁²/V₁ + A₂²/V₂), N/m, at length `length_m`.
+    pub fn oil_stiffness_n_m(&self, bulk_modulus_pa: f64, length_m: f64) -> f64 {
+        let (v1, v2) = self.volumes_m3(length_m);
+        bulk_modulus_pa * (self.cap_area_m2().powi(2) / v1 + self.rod_area_m2().powi(2) / v2)
+    }
+}
+
+/// The proportional valve, from the scenario's `actuator.valve`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Valve {
+    /// Flow per land at full opening and the rated pressure drop, m³/s (datasheet).
+    pub rated_flow_m3_s: f64,
+    /// Pressure drop per land at which the rated flow is given, Pa (datasheet: often 35 bar).
+    pub rated_pressure_drop_pa: f64,
+    /// Time constant of the spool's first-order response, s.
+    pub spool_time_constant_s: f64,
+}
+
+impl Valve {
+    /// Flow gain K = Q_rated / √Δp_rated, m³/s/√Pa.
+    pub fn flow_gain(&self) -> f64 {
+        self.rated_flow_m3_s / self.rated_pressure_drop_pa.sqrt()
+    }
+
+    /// Flow through a land opened `opening` (fraction) under a drop `drop_pa`, m³/s (signed
+    /// √ rounded off near zero, module doc).
+    pub fn land_flow_m3_s(&self, opening: f64, drop_pa: f64) -> f64 {
+        let delta = 0.01 * self.rated_pressure_drop_pa;
+        self.flow_gain() * opening * drop_pa / (drop_pa * drop_pa + delta * delta).powf(0.25)
+    }
+}
+
+/// The circuit's operation, from the scenario's `[actuator]` table.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HydraulicCircuit {
+    /// Supply pressure p_s, Pa.
+    pub supply_pressure_pa: f64,
+    /// Tank (return) pressure p_t, Pa.
+    pub tank_pressure_pa: f64,
+    /// Effective bulk modulus of oil and hoses, Pa.
+    pub bulk_modulus_pa: f64,
+    /// Setting of the chambers' relief valves, Pa.
+    pub relief_pressure_pa: f64,
+    /// The proportional valve.
+    pub valve: Valve,
+}
+
+impl HydraulicCircuit {
+    /// Flows into the chambers (cap, rod) through the valve at spool `opening` and chamber
+    /// pressures `p` (Pa), relief and anti-cavitation included, m³/s.
+    pub fn flows_m3_s(&self, opening: f64, p: [f64; 2]) -> [f64; 2] {
+        let (ps, pt, valve) = (self.supply_pressure_pa, self.tank_pressure_pa, &self.valve);
+        let [q1, q2] = if opening >= 0.0 {
+            [valve.land_flow_m3_s(opening, ps - p[0]), -valve.land_flow_m3_s(opening, p[1] - pt)]
+        } else {
+            [valve.land_flow_m3_s(opening, p[0] - pt), -valve.land_flow_m3_s(opening, ps - p[1])]
+        };
+        [q1 - self.relief_flow_m3_s(p[0]), q2 - self.relief_flow_m3_s(p[1])]
+    }
+
+    /// Flow out of a chamber at pressure `p` through its relief valve (negative: in through
+    /// its check valve from tank), m³/s.
+    fn relief_flow_m3_s(&self, p: f64) -> f64 {
+        let gain = self.valve.rated_flow_m3_s / (0.05 * self.relief_pressure_pa);
+        gain * ((p - self.relief_pressure_pa).max(0.0) - (self.tank_pressure_pa - p).max(0.0))
+    }
+}
+
+/// A hydraulic drive: cylinder, circuit and controller.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HydraulicDrive {
+    /// The cylinder and hoses.
+    pub cylinder: Cylinder,
+    /// The circuit's operation.
+    pub circuit: HydraulicCircuit,
+    /// The position controller on the joint angle; its output is the spool command.
+    pub controller: ControllerGains,
+}
+
+impl HydraulicDrive {
+    /// Chamber pressures (cap, rod) that hold a rod force `force_n` with the spool centred:
+    /// p₁ A₁ − p₂ A₂ = F and p₁ + p₂ = p_s + p_t (a matched valve's null), Pa.
+    pub fn holding_pressures_pa(&self, force_n: f64) -> [f64; 2] {
+        let (a1, a2) = (self.cylinder.cap_area_m2(), self.cylinder.rod_area_m2());
+        let sum = self.circuit.supply_pressure_pa + self.circuit.tank_pressure_pa;
+        let p1 = (force_n + a2 * sum) / (a1 + a2);
+        [p1, sum - p1]
+    }
+
+    /// The spool opening whose flow at half the supply-to-tank drop moves the rod at `rate_m_s`.
+    pub fn feedforward_opening(&self, rate_m_s: f64) -> f64 {
+        let c = &self.circuit;
+        let area = if rate_m_s >= 0.0 { self.cylinder.cap_area_m2() } else { self.cylinder.rod_area_m2() };
+        let drop = 0.5 * (c.supply_pressure_pa - c.tank_pressure_pa);
+        area * rate_m_s / (c.valve.flow_gain() * drop.sqrt())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cylinder() -> Cylinder {
+        Cylinder {
+            base_pin_m: [1.0, -1.0],
+            arm_pin_m: [1.0, -0.3],
+            bore_m: 0.14,
+            rod_m: 0.08,
+            closed_length_m: 0.5,
+            stroke_m: 1.0,
+            cap_dead_volume_m3: 1e-3,
+            rod_dead_volume_m3: 1e-3,
+        }
+    }
+
+    #[test]
+    fn moment_arm_is_the_derivative_of_the_length() {
+        let c = cylinder();
+        for theta in [0.0, 0.4, 1.2] {
+            let h = 1e-6;
+            let numeric = (c.length_and_arm(theta + h).0 - c.length_and_arm(theta - h).0) / (2.0 * h);
+            assert!((numeric - c.length_and_arm(theta).1).abs() < 1e-8, "at {theta}");
+        }
+    }
+
+    #[test]
+    fn land_flow_follows_the_orifice_law_above_the_round_off() {
+        let v = Valve { rated_flow_m3_s: 1e-3, rated_pressure_drop_pa: 3.5e6, spool_time_constant_s: 0.01 };
+        for drop in [1e6, 3.5e6, 1e7] {
+            let exact = 1e-3 * 0.5 * (drop / 3.5e6f64).sqrt();
+            assert!((v.land_flow_m3_s(0.5, drop) / exact - 1.0).abs() < 1e-4);
+            assert!((v.land_flow_m3_s(0.5, -drop) + exact).abs() < 1e-4 * exact);
+        }
+    }
+}

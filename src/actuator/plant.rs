@@ -1,0 +1,223 @@
+//! An actuator running: its machine, its controller and its reference, and the coordinates it
+//! adds to the arm's equations.
+//!
+//! The arm's integrator coordinates become [θ, q, own] where `own` is
+//! - servo: the motor angle φ (second order, inertia N² J_m);
+//! - hydraulic: the first-order block (p₁/p_s, p₂/p_s, spool opening), carried as *rates*: a
+//!   first-order state z enters the integrators as the velocity of a coordinate whose position
+//!   is not used (ż is its acceleration), so every integrator's velocity update advances it and
+//!   the implicit ones solve it in the same Newton iteration as the arm. Pressures are scaled by
+//!   the supply pressure so that the iteration's norms weigh them like the arm's coordinates.
+
+use nalgebra::DVector;
+
+use super::{Actuator, Controller, HydraulicDrive};
+use crate::drive::{DriveState, MotionProfile};
+
+/// What an actuator reports at one instant.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ActuatorOutputs {
+    /// Torque the actuator puts on the hub, N·m.
+    pub hub_torque_n_m: f64,
+    /// Rod force of a cylinder (positive: extending), N.
+    pub rod_force_n: Option<f64>,
+    /// Chamber pressures of a cylinder (cap, rod), Pa.
+    pub pressures_pa: Option<[f64; 2]>,
+    /// Pin-to-pin length of a cylinder, m.
+    pub cylinder_length_m: Option<f64>,
+    /// The controller's held output (hub torque N·m, or spool command).
+    pub command: f64,
+    /// Reference angle minus hub angle, rad.
+    pub tracking_error_rad: f64,
+}
+
+/// An actuator with its running controller, tracking a reference.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ActuatorPlant {
+    /// The machine and its gains.
+    pub actuator: Actuator,
+    /// The reference the controller tracks.
+    pub reference: MotionProfile,
+    /// The running controller.
+    pub controller: Controller,
+}
+
+impl ActuatorPlant {
+    /// A plant for `actuator` (servo or hydraulic) tracking `reference`, its controller sampling
+    /// at its own rate or every `step_s`.
+    pub fn new(actuator: Actuator, reference: MotionProfile, step_s: f64) -> Option<Self> {
+        let gains = *actuator.controller()?;
+        let period_s = gains.rate_hz.map_or(step_s, |hz| 1.0 / hz);
+        let limit = match &actuator {
+            Actuator::Servo(s) => s.machine.hub_torque_limit_n_m(),
+            _ => 1.0,
+        };
+        Some(ActuatorPlant { actuator, reference, controller: Controller::new(gains, period_s, limit) })
+    }
+
+    /// Second-order coordinates it adds (the servo's motor angle).
+    pub fn second_order_dofs(&self) -> usize {
+        usize::from(matches!(self.actuator, Actuator::Servo(_)))
+    }
+
+    /// First-order states it adds (the hydraulic pressures and spool).
+    pub fn first_order_dofs(&self) -> usize {
+        if matches!(self.actuator, Actuator::Hydraulic(_)) { 3 } else { 0 }
+    }
+
+    /// All coordinates it adds.
+    pub fn dofs(&self) -> usize {
+        self.second_order_dofs() + self.first_order_dofs()
+    }
+
+    /// Diagonal mass of its coordinates: N² J_m for a motor angle, 1 for a first-order state.
+    pub fn mass(&self, i: usize) -> f64 {
+        match &self.actuator {
+            Actuator::Servo(s) if i == 0 => s.machine.reflected_inertia_kg_m2(),
+            _ => 1.0,
+        }
+    }
+
+    /// Torque on the hub (θ, θ̇), N·m, from its coordinates `x` and rates `v`.
+    pub fn hub_torque_n_m(&self, hub: (f64, f64), x: &[f64], v: &[f64]) -> f64 {
+        match &self.actuator {
+            Actuator::Ideal => 0.0,
+            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), hub),
+            Actuator::Hydraulic(h) => {
+                let (length, arm) = h.cylinder.length_and_arm(hub.0);
+                rod_force_n(h, length, arm * hub.1, v) * arm
+            }
+        }
+    }
+
+    /// Writes the generalized forces of its coordinates into `f` (the motor's torques; the
+    /// first-order states' rates).
+    pub fn forces(&self, hub: (f64, f64), x: &[f64], v: &[f64], f: &mut [f64]) {
+        match &self.actuator {
+            Actuator::Ideal => {}
+            Actuator::Servo(s) => f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), hub),
+            Actuator::Hydraulic(h) => hydraulic_rates(h, hub, self.controller.output, v, f),
+        }
+    }
+
+    /// Samples the controller if a sample is due at `t_s`, reading the state (θ, θ̇) of the hub
+    /// and `x`, `v` of its own coordinates.
+    pub fn sample_if_due(&mut self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) {
+        if !self.controller.due(t_s) {
+            return;
+        }
+        let reference = self.reference.sample(t_s);
+        let (measured, feedforward) = match &self.actuator {
+            Actuator::Ideal => return,
+            Actuator::Servo(_) => ((x[0], v[0]), self.controller.feedforward(&reference)),
+            Actuator::Hydraulic(h) => (hub, hydraulic_feedforward(h, &self.controller, &reference)),
+        };
+        self.controller.sample(&reference, measured.0, measured.1, feedforward);
+    }
+
+    /// Time of the controller's next sample, s.
+    pub fn next_sample_s(&self) -> f64 {
+        self.controller.next_sample_s
+    }
+
+    /// How far below the reference the hub rests when it holds a torque `torque_n_m` (against
+    /// gravity) at rest, rad: the drive train's twist, and a proportional controller's offset.
+    pub fn static_lag_rad(&self, torque_n_m: f64) -> f64 {
+        match &self.actuator {
+            Actuator::Servo(s) => {
+                let twist = torque_n_m / s.machine.stiffness_n_m_per_rad;
+                let offset = if s.controller.ki > 0.0 { 0.0 } else { torque_n_m / s.controller.kp };
+                twist + offset
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Its coordinates and rates holding the hub at rest at `angle_rad` against a torque
+    /// `torque_n_m`, with the controller preset to hold it (the arm waits on its drive before
+    /// the lift). `Err` with a reason when the actuator cannot hold it.
+    pub fn holding(&mut self, angle_rad: f64, torque_n_m: f64) -> Result<(DVector<f64>, DVector<f64>), String> {
+        let n = self.dofs();
+        let (mut x, mut v) = (DVector::zeros(n), DVector::zeros(n));
+        match &self.actuator {
+            Actuator::Ideal => {}
+            Actuator::Servo(s) => {
+                x[0] = angle_rad + torque_n_m / s.machine.stiffness_n_m_per_rad;
+                if torque_n_m.abs() > s.machine.hub_torque_limit_n_m() {
+                    return Err(format!(
+                        "holding the arm at the start takes {:.0} N·m at the hub, above the motor's {:.0} N·m",
+                        torque_n_m.abs(),
+                        s.machine.hub_torque_limit_n_m()
+                    ));
+                }
+            }
+            Actuator::Hydraulic(h) => {
+                let (_, arm) = h.cylinder.length_and_arm(angle_rad);
+                let p = h.holding_pressures_pa(torque_n_m / arm);
+                let (pt, ps) = (h.circuit.tank_pressure_pa, h.circuit.supply_pressure_pa);
+                if p.iter().any(|p| !(pt..=ps).contains(p)) {
+                    return Err(format!(
+                        "holding the arm at the start takes a rod force of {:.0} N, which needs chamber pressures \
+                         {:.3e} and {:.3e} Pa outside tank to supply ({pt:.3e} to {ps:.3e} Pa)",
+                        torque_n_m / arm,
+                        p[0],
+                        p[1]
+                    ));
+                }
+                v[0] = p[0] / ps;
+                v[1] = p[1] / ps;
+            }
+        }
+        self.controller.hold(if matches!(self.actuator, Actuator::Servo(_)) { torque_n_m } else { 0.0 });
+        Ok((x, v))
+    }
+
+    /// What it reports at time `t_s` with the hub at (θ, θ̇).
+    pub fn outputs(&self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) -> ActuatorOutputs {
+        let reference = self.reference.sample(t_s);
+        let mut out = ActuatorOutputs {
+            hub_torque_n_m: self.hub_torque_n_m(hub, x, v),
+            command: self.controller.output,
+            tracking_error_rad: reference.angle_rad - hub.0,
+            ..ActuatorOutputs::default()
+        };
+        if let Actuator::Hydraulic(h) = &self.actuator {
+            let (length, arm) = h.cylinder.length_and_arm(hub.0);
+            let ps = h.circuit.supply_pressure_pa;
+            out.rod_force_n = Some(rod_force_n(h, length, arm * hub.1, v));
+            out.pressures_pa = Some([v[0] * ps, v[1] * ps]);
+            out.cylinder_length_m = Some(length);
+        }
+        out
+    }
+}
+
+/// Rod force (N) at length `length_m`, rod speed `rate_m_s` and scaled pressures `v[0..2]`.
+fn rod_force_n(h: &HydraulicDrive, length_m: f64, rate_m_s: f64, v: &[f64]) -> f64 {
+    let ps = h.circuit.supply_pressure_pa;
+    let c = &h.cylinder;
+    ps * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2()) + c.end_stop_force_n(length_m, rate_m_s)
+}
+
+/// Rates of the scaled pressures and of the spool (module doc of [`super::hydraulic`]).
+fn hydraulic_rates(h: &HydraulicDrive, hub: (f64, f64), command: f64, v: &[f64], f: &mut [f64]) {
+    let (c, circuit) = (&h.cylinder, &h.circuit);
+    let ps = circuit.supply_pressure_pa;
+    let (length, arm) = c.length_and_arm(hub.0);
+    let rate = arm * hub.1;
+    let (v1, v2) = c.volumes_m3(length);
+    let spool = v[2];
+    let [q1, q2] = circuit.flows_m3_s(spool.clamp(-1.0, 1.0), [v[0] * ps, v[1] * ps]);
+    let beta = circuit.bulk_modulus_pa / ps;
+    f[0] = beta / v1.max(1e-9) * (q1 - c.cap_area_m2() * rate);
+    f[1] = beta / v2.max(1e-9) * (q2 + c.rod_area_m2() * rate);
+    f[2] = (command - spool) / circuit.valve.spool_time_constant_s;
+}
+
+/// The spool command that feeds the reference forward (module doc of [`super::hydraulic`]).
+fn hydraulic_feedforward(h: &HydraulicDrive, controller: &Controller, reference: &DriveState) -> f64 {
+    let (_, arm) = h.cylinder.length_and_arm(reference.angle_rad);
+    let gains = &controller.gains;
+    gains.velocity_feedforward * h.feedforward_opening(arm * reference.rate_rad_s)
+        + gains.acceleration_feedforward * reference.accel_rad_s2
+}
