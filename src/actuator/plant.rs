@@ -126,7 +126,10 @@ impl ActuatorPlant {
         match &self.actuator {
             Actuator::Servo(s) => {
                 let twist = torque_n_m / s.machine.stiffness_n_m_per_rad;
-                let offset = if s.controller.ki > 0.0 { 0.0 } else { torque_n_m / s.controller.kp };
+                // Without integral action the proportional term holds the torque (and without
+                // gains nothing does: `holding` refuses it).
+                let c = &s.controller;
+                let offset = if c.ki > 0.0 || c.kp <= 0.0 { 0.0 } else { torque_n_m / c.kp };
                 twist + offset
             }
             _ => 0.0,
@@ -143,6 +146,9 @@ impl ActuatorPlant {
             Actuator::Ideal => {}
             Actuator::Servo(s) => {
                 x[0] = angle_rad + torque_n_m / s.machine.stiffness_n_m_per_rad;
+                if torque_n_m != 0.0 && s.controller.kp <= 0.0 && s.controller.ki <= 0.0 {
+                    return Err("a controller without kp or ki cannot hold the arm against gravity".into());
+                }
                 if torque_n_m.abs() > s.machine.hub_torque_limit_n_m() {
                     return Err(format!(
                         "holding the arm at the start takes {:.0} N·m at the hub, above the motor's {:.0} N·m",

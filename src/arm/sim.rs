@@ -180,9 +180,9 @@ impl ArmSimulation {
         Ok(sim)
     }
 
-    /// Sets the hub's rate of a free hub (an initial condition), rad/s.
+    /// Sets the hub's rate of a free or actuated hub (an initial condition), rad/s.
     pub fn set_free_hub_rate(&mut self, rate_rad_s: f64) -> Result<(), ArmError> {
-        if !matches!(self.drive, HubDrive::Free { .. }) {
+        if !self.drive.hub_is_free() {
             return Err(ArmError::InvalidParameter {
                 name: "hub rate".into(),
                 value: rate_rad_s,

@@ -1,0 +1,249 @@
+//! Servo and hydraulic drives against closed forms: the locked cylinder's oil spring, the drive
+//! train's spring, a PD loop's step response, the valve's steady flow, the relief valve's cap,
+//! and the work the actuator does against the arm's energy.
+
+mod common;
+
+use common::{model, rel, uniform};
+use pipearm::actuator::{
+    Actuator, ActuatorPlant, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, ServoMachine,
+    Valve,
+};
+use pipearm::arm::{ArmModel, ArmOptions, ArmSimulation, Fidelity, HubDrive};
+use pipearm::drive::{MotionProfile, TrapezoidLimit};
+use pipearm::integrate::IntegratorKind;
+
+const GEN_ALPHA: IntegratorKind = IntegratorKind::GeneralizedAlpha { rho_inf: 0.8 };
+
+/// A rigid 4 m, 200 kg arm on a 100 kg·m² hub.
+fn rigid_arm(gravity_m_s2: f64) -> ArmModel {
+    let options = ArmOptions { gravity_m_s2, hub_inertia_kg_m2: 100.0, ..ArmOptions::default() };
+    ArmModel::new(model(uniform(4.0, 1e6, 50.0, 8)), Fidelity::Rigid, options).unwrap()
+}
+
+fn gains(kp: f64, kd: f64) -> ControllerGains {
+    ControllerGains { kp, ki: 0.0, kd, velocity_feedforward: 0.0, acceleration_feedforward: 0.0, rate_hz: None }
+}
+
+/// A cylinder 0.8 m from the pivot on both pins: 0.4 m long at θ = 0, moment arm 0.8 m.
+fn cylinder() -> Cylinder {
+    Cylinder {
+        base_pin_m: [0.8, -0.6],
+        arm_pin_m: [0.8, -0.2],
+        bore_m: 0.08,
+        rod_m: 0.045,
+        closed_length_m: 0.3,
+        stroke_m: 0.5,
+        cap_dead_volume_m3: 5e-4,
+        rod_dead_volume_m3: 5e-4,
+    }
+}
+
+fn circuit(relief_pressure_pa: f64) -> HydraulicCircuit {
+    HydraulicCircuit {
+        supply_pressure_pa: 20e6,
+        tank_pressure_pa: 0.5e6,
+        bulk_modulus_pa: 1.2e9,
+        relief_pressure_pa,
+        valve: Valve { rated_flow_m3_s: 1e-3, rated_pressure_drop_pa: 3.5e6, spool_time_constant_s: 0.01 },
+    }
+}
+
+fn hydraulic(controller: ControllerGains, relief_pressure_pa: f64) -> Actuator {
+    Actuator::Hydraulic(HydraulicDrive { cylinder: cylinder(), circuit: circuit(relief_pressure_pa), controller })
+}
+
+fn simulate(arm: ArmModel, actuator: Actuator, reference: MotionProfile, step_s: f64) -> ArmSimulation {
+    let plant = ActuatorPlant::new(actuator, reference, step_s).unwrap();
+    ArmSimulation::new(arm, HubDrive::Actuated(Box::new(plant)), GEN_ALPHA).unwrap()
+}
+
+/// Angular frequency of `signal` sampled every `h` s, from its mean-crossings, rad/s.
+fn frequency_rad_s(signal: &[f64], h: f64) -> f64 {
+    let mean = signal.iter().sum::<f64>() / signal.len() as f64;
+    let crossings: Vec<f64> = signal
+        .windows(2)
+        .enumerate()
+        .filter(|(_, w)| (w[0] - mean) * (w[1] - mean) < 0.0)
+        .map(|(i, w)| h * (i as f64 + (w[0] - mean) / (w[0] - w[1])))
+        .collect();
+    let periods = (crossings.len() - 1) as f64 / 2.0;
+    std::f64::consts::TAU * periods / (crossings.last().unwrap() - crossings[0])
+}
+
+fn plant_mut(sim: &mut ArmSimulation) -> &mut ActuatorPlant {
+    match &mut sim.drive {
+        HubDrive::Actuated(plant) => plant,
+        _ => unreachable!(),
+    }
+}
+
+#[test]
+fn locked_cylinder_rings_on_its_oil_spring() {
+    // Valve closed (no gains), no gravity: the arm rings on β (A₁²/V₁ + A₂²/V₂) through the
+    // moment arm, ω = √(r² k / J).
+    let arm = rigid_arm(0.0);
+    let inertia = arm.pivot_inertia_kg_m2;
+    let c = cylinder();
+    let (length, moment_arm) = c.length_and_arm(0.0);
+    let expected = (moment_arm.powi(2) * c.oil_stiffness_n_m(1.2e9, length) / inertia).sqrt();
+    let h = std::f64::consts::TAU / expected / 400.0;
+    let mut sim = simulate(arm, hydraulic(gains(0.0, 0.0), 30e6), MotionProfile::hold(0.0), h);
+    sim.set_free_hub_rate(1e-3 * expected).unwrap();
+    let mut angle = Vec::new();
+    for _ in 0..4000 {
+        sim.step(h).unwrap();
+        angle.push(sim.state().x[0]);
+    }
+    let measured = frequency_rad_s(&angle, h);
+    assert!(rel(measured, expected) < 2e-3, "ω {measured} against {expected} rad/s");
+}
+
+fn servo(machine: ServoMachine, controller: ControllerGains) -> Actuator {
+    Actuator::Servo(ServoDrive { machine, controller })
+}
+
+fn machine(rotor_inertia_kg_m2: f64, stiffness: f64) -> ServoMachine {
+    ServoMachine {
+        gear_ratio: 100.0,
+        rotor_inertia_kg_m2,
+        stiffness_n_m_per_rad: stiffness,
+        damping_n_m_s_per_rad: 0.0,
+        torque_limit_n_m: 1e4,
+        speed_limit_rad_s: 1e3,
+    }
+}
+
+/// Twist φ − θ of the drive train over `steps` steps after a kick of the hub.
+fn twist_after_kick(m: ServoMachine, steps: usize, h: f64) -> Vec<f64> {
+    let mut sim = simulate(rigid_arm(0.0), servo(m, gains(0.0, 0.0)), MotionProfile::hold(0.0), h);
+    sim.set_free_hub_rate(1e-3).unwrap();
+    (0..steps)
+        .map(|_| {
+            sim.step(h).unwrap();
+            sim.state().x[1] - sim.state().x[0]
+        })
+        .collect()
+}
+
+#[test]
+fn drive_train_spring_rings_at_the_two_inertia_frequency() {
+    let (k, inertia) = (2e6, rigid_arm(0.0).pivot_inertia_kg_m2);
+    // Rotor held (N² J_m 10⁴ times the arm's inertia): ω = √(k / J) within 5e-5.
+    let held = machine(1e3, k);
+    let expected = (k / inertia).sqrt();
+    let h = std::f64::consts::TAU / expected / 400.0;
+    let measured = frequency_rad_s(&twist_after_kick(held, 4000, h), h);
+    assert!(rel(measured, expected) < 2e-3, "held rotor: ω {measured} against {expected}");
+    // A free rotor of N² J_m = 500 kg·m²: ω² = k (1/J + 1/(N² J_m)).
+    let free = machine(0.05, k);
+    let expected = (k * (1.0 / inertia + 1.0 / free.reflected_inertia_kg_m2())).sqrt();
+    let h = std::f64::consts::TAU / expected / 400.0;
+    let measured = frequency_rad_s(&twist_after_kick(free, 4000, h), h);
+    assert!(rel(measured, expected) < 2e-3, "free rotor: ω {measured} against {expected}");
+}
+
+#[test]
+fn pd_controlled_arm_follows_the_second_order_step_response() {
+    // A stiff drive train and a controller at 10 kHz against a 1 Hz loop: J θ̈ + kd θ̇ + kp θ =
+    // kp Δ, with the derivative on the rate error giving the impulse kd Δ as the reference steps.
+    let m = machine(5e-3, 1e9);
+    let inertia = rigid_arm(0.0).pivot_inertia_kg_m2 + m.reflected_inertia_kg_m2();
+    let omega_n = std::f64::consts::TAU;
+    let zeta = 0.3;
+    let (kp, kd) = (inertia * omega_n * omega_n, 2.0 * zeta * omega_n * inertia);
+    let (step_rad, ramp_s) = (0.01, 2e-3);
+    let reference = MotionProfile::trapezoidal(0.0, step_rad, ramp_s, TrapezoidLimit::RampFraction(0.5)).unwrap();
+    let h = 1e-4;
+    let mut sim = simulate(rigid_arm(0.0), servo(m, gains(kp, kd)), reference, h);
+    let (sigma, omega_d) = (zeta * omega_n, omega_n * (1.0 - zeta * zeta).sqrt());
+    let (a, b) = (-step_rad, (kd * step_rad / inertia - zeta * omega_n * step_rad) / omega_d);
+    let mut worst = 0.0_f64;
+    while sim.time_s() < 3.0 {
+        sim.step(h).unwrap();
+        let t = sim.time_s() - 0.5 * ramp_s;
+        if t > 0.05 {
+            let exact = step_rad + (-sigma * t).exp() * (a * (omega_d * t).cos() + b * (omega_d * t).sin());
+            worst = worst.max((sim.state().x[0] - exact).abs());
+        }
+    }
+    assert!(worst < 0.01 * step_rad, "largest departure {worst:e} rad from the closed form");
+}
+
+#[test]
+fn open_valve_moves_the_rod_at_the_orifice_law_speed() {
+    // Spool held at x = 0.5 against a constant rod force F: steady flow through both lands,
+    // A₁ ṡ = K x √(p_s − p₁), A₂ ṡ = K x √(p₂ − p_t) with p₁ A₁ − p₂ A₂ = F, so
+    // ṡ² = (A₁ p_s − A₂ p_t − F) (K x)² / (A₁³ + A₂³).
+    let (opening, force) = (0.5, 3e4);
+    let h = 1e-3;
+    let mut sim = simulate(rigid_arm(0.0), hydraulic(gains(0.0, 0.0), 30e6), MotionProfile::hold(0.0), h);
+    let plant = plant_mut(&mut sim);
+    plant.controller.output = opening;
+    plant.controller.next_sample_s = f64::INFINITY;
+    let (c, k) = (cylinder(), circuit(30e6).valve.flow_gain());
+    let (a1, a2) = (c.cap_area_m2(), c.rod_area_m2());
+    let expected = ((a1 * 20e6 - a2 * 0.5e6 - force) * (k * opening).powi(2) / (a1.powi(3) + a2.powi(3))).sqrt();
+    let mut speeds = Vec::new();
+    while sim.time_s() < 0.6 {
+        let (_, moment_arm) = c.length_and_arm(sim.state().x[0]);
+        sim.load.hub_torque_n_m = -force * moment_arm;
+        sim.step(h).unwrap();
+        if sim.time_s() > 0.4 {
+            speeds.push(c.length_and_arm(sim.state().x[0]).1 * sim.state().v[0]);
+        }
+    }
+    let mean = speeds.iter().sum::<f64>() / speeds.len() as f64;
+    assert!(rel(mean, expected) < 5e-3, "rod speed {mean} against {expected} m/s");
+}
+
+/// Largest cap-side pressure after the locked arm is kicked into its oil at `rate` rad/s.
+fn peak_cap_pressure_pa(relief_pressure_pa: f64, rate_rad_s: f64) -> f64 {
+    let h = 2e-4;
+    let mut sim = simulate(rigid_arm(0.0), hydraulic(gains(0.0, 0.0), relief_pressure_pa), MotionProfile::hold(0.0), h);
+    sim.set_free_hub_rate(-rate_rad_s).unwrap();
+    let mut peak = 0.0_f64;
+    for _ in 0..1000 {
+        sim.step(h).unwrap();
+        peak = peak.max(sim.sample().actuator.unwrap().pressures_pa.unwrap()[0]);
+    }
+    peak
+}
+
+#[test]
+fn relief_valve_caps_the_chamber_pressure() {
+    // Without relief (a setting far above), the kick compresses the cap side far past 25 MPa.
+    // A 25 MPa relief passes the rated flow Q_r at 5 % override: the rod displaces at most
+    // Q = A₁ r ω₀, so the pressure stays within 25 MPa (1 + 0.05 Q / Q_r).
+    let rate = 1.2;
+    let unrelieved = peak_cap_pressure_pa(1e9, rate);
+    assert!(unrelieved > 40e6, "the kick must exceed the setting to test it: {unrelieved:e}");
+    let c = cylinder();
+    let displaced = c.cap_area_m2() * c.length_and_arm(0.0).1 * rate;
+    let bound = 25e6 * (1.0 + 0.05 * displaced / circuit(25e6).valve.rated_flow_m3_s);
+    let relieved = peak_cap_pressure_pa(25e6, rate);
+    assert!((25e6..=bound).contains(&relieved), "relieved peak {relieved:e} Pa, bound {bound:e}");
+}
+
+#[test]
+fn actuator_work_equals_the_arm_energy_gained() {
+    // A rigid arm lifted 0.5 rad by the hydraulic drive, undamped: ∫ τ θ̇ dt = Δ(kinetic + gravity).
+    let h = 5e-4;
+    let reference = MotionProfile::trapezoidal(0.0, 0.5, 3.0, TrapezoidLimit::RampFraction(0.3)).unwrap();
+    let controller = ControllerGains { velocity_feedforward: 1.0, ..gains(2.0, 0.0) };
+    let mut sim = simulate(rigid_arm(9.80665), hydraulic(controller, 30e6), reference, h);
+    let energy = |s: &pipearm::arm::ArmSample| s.energies.kinetic_j + s.energies.gravity_j;
+    let first = sim.sample();
+    let (e0, mut last, mut work) = (energy(&first), first, 0.0);
+    while sim.time_s() < 4.0 {
+        sim.step(h).unwrap();
+        let s = sim.sample();
+        work += 0.5 * h * (s.drive_torque_n_m * s.hub.rate_rad_s + last.drive_torque_n_m * last.hub.rate_rad_s);
+        last = s;
+    }
+    let gained = energy(&last) - e0;
+    assert!(gained > 1e3, "the arm must be lifted: {gained} J");
+    assert!(rel(work, gained) < 2e-3, "work {work} J against energy gained {gained} J");
+    // And it tracked the reference: within a degree at the end.
+    assert!((last.hub.angle_rad - 0.5).abs() < 0.0175, "ended at {} rad", last.hub.angle_rad);
+}
