@@ -506,6 +506,7 @@ fn print_summary(path: &Path, s: &RunSummary) {
     println!("max tip deflection  {:.3} mm (w/l = 1/{:.0})", 1e3 * s.max_tip_deflection_m, 1.0 / s.max_w_over_l);
     println!("peak drive torque   {:.1} kN·m at {:.3} s", 1e-3 * s.peak_drive_torque_n_m, s.peak_drive_torque_time_s);
     print_drive_limits(&s.drive, s.peak_drive_torque_n_m);
+    print_actuator(&s.actuator);
     let r = &s.residual;
     let frequency =
         if r.frequency_hz.is_finite() { format!("{:.3} Hz", r.frequency_hz) } else { "no oscillation".into() };
@@ -555,6 +556,26 @@ fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
             1e-3 * d.effort_n_m
         );
     }
+}
+
+/// A servo's or hydraulic drive's peaks and tracking (nothing for an ideal drive).
+fn print_actuator(a: &pipearm::actuator::ActuatorSummary) {
+    if a.kind == "ideal" {
+        return;
+    }
+    let cylinder = match (a.peak_force_n, a.peak_pressure_pa) {
+        (Some(force), Some(pressure)) => {
+            format!(", rod force {:.1} kN, pressure {:.1} bar", 1e-3 * force, 1e-5 * pressure)
+        }
+        _ => String::new(),
+    };
+    println!(
+        "actuator            {}: peak hub torque {:.1} kN·m{cylinder}; tracking error up to {:.3}°, overtravel {:.3}°",
+        a.kind,
+        1e-3 * a.peak_torque_n_m,
+        a.max_tracking_error_deg,
+        a.overtravel_deg
+    );
 }
 
 fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result<()> {

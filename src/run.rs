@@ -4,6 +4,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use crate::actuator::{ActuatorOutputs, ActuatorSummary};
 use crate::analysis::{Residual, StiffnessClass, residual};
 use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
@@ -31,6 +32,8 @@ pub struct Series {
     pub tip_velocity_m_s: Vec<[f64; 2]>,
     /// Drive torque, N·m.
     pub drive_torque_n_m: Vec<f64>,
+    /// The actuator's outputs per step (empty under an ideal drive).
+    pub actuator: Vec<ActuatorOutputs>,
     /// Contact force per pad (outer index: pad), N.
     pub pad_force_n: Vec<Vec<f64>>,
     /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
@@ -187,6 +190,8 @@ pub struct RunSummary {
     pub peak_drive_torque_time_s: f64,
     /// The drive's peaks against the lift joint's URDF limits.
     pub drive: DriveLimits,
+    /// The actuator's peaks and how well it tracked.
+    pub actuator: ActuatorSummary,
     /// Residual tip vibration after the drive stops.
     pub residual: Residual,
     /// Contact pairs.
@@ -458,6 +463,7 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     series.tip_deflection_m.push(s.tip_deflection_hub_m);
     series.tip_velocity_m_s.push(s.tip_velocity_hub_m_s);
     series.drive_torque_n_m.push(s.drive_torque_n_m);
+    series.actuator.extend(s.actuator);
     series.energies_j.push([s.energies.kinetic_j, s.energies.strain_j, s.energies.gravity_j]);
     if scene.arm.arm.fidelity != Fidelity::Fe {
         series.modal_dofs = s.q.len();
@@ -561,6 +567,14 @@ fn summarize(
         peak_drive_torque_n_m: peak_torque,
         peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
         drive: DriveLimits::of(model, peak_torque),
+        actuator: ActuatorSummary::of(
+            model.drive.actuator.kind(),
+            &model.drive.motion,
+            &series.t_s,
+            &series.hub_angle_rad,
+            &series.drive_torque_n_m,
+            &series.actuator,
+        ),
         residual: residual(&deflection, model.drive_end_s()),
         pairs,
         highest_omega_dt: arm.highest_omega_rad_s * model.time.step_s,

@@ -45,7 +45,12 @@ fn circuit(relief_pressure_pa: f64) -> HydraulicCircuit {
         tank_pressure_pa: 0.5e6,
         bulk_modulus_pa: 1.2e9,
         relief_pressure_pa,
-        valve: Valve { rated_flow_m3_s: 1e-3, rated_pressure_drop_pa: 3.5e6, spool_time_constant_s: 0.01 },
+        valve: Valve {
+            rated_flow_m3_s: 1e-3,
+            rated_pressure_drop_pa: 3.5e6,
+            spool_time_constant_s: 0.01,
+            leakage_m3_s_per_pa: 0.0,
+        },
     }
 }
 

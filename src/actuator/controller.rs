@@ -73,10 +73,8 @@ impl Controller {
     /// Samples: computes and holds the output for the reference `reference`, the measured angle
     /// `angle_rad` and rate `rate_rad_s`, and the feed-forward `feedforward` (in output units).
     pub fn sample(&mut self, reference: &DriveState, angle_rad: f64, rate_rad_s: f64, feedforward: f64) -> f64 {
-        let g = &self.gains;
         let error = reference.angle_rad - angle_rad;
-        let unsaturated =
-            g.kp * error + g.ki * self.integral + g.kd * (reference.rate_rad_s - rate_rad_s) + feedforward;
+        let unsaturated = self.law(reference, angle_rad, rate_rad_s, feedforward);
         self.output = unsaturated.clamp(-self.limit, self.limit);
         let saturated = self.output != unsaturated;
         if !saturated || error.signum() != unsaturated.signum() {
@@ -84,6 +82,14 @@ impl Controller {
         }
         self.next_sample_s += self.period_s;
         self.output
+    }
+
+    /// The control law before saturation, with the integral as it stands: what the output would
+    /// be if the controller sampled continuously.
+    pub fn law(&self, reference: &DriveState, angle_rad: f64, rate_rad_s: f64, feedforward: f64) -> f64 {
+        let g = &self.gains;
+        let error = reference.angle_rad - angle_rad;
+        g.kp * error + g.ki * self.integral + g.kd * (reference.rate_rad_s - rate_rad_s) + feedforward
     }
 
     /// The feed-forward of a reference in output units: `velocity_feedforward` θ̇_ref +

@@ -124,6 +124,11 @@ pub struct Valve {
     pub rated_pressure_drop_pa: f64,
     /// Time constant of the spool's first-order response, s.
     pub spool_time_constant_s: f64,
+    /// Laminar leakage per land at null, m³/s per Pa (datasheet: internal leakage over its test
+    /// pressure): each control port leaks to supply and tank through it. It is the valve's
+    /// pressure-flow coefficient, the main damping of the oil column under a position loop.
+    #[serde(default)]
+    pub leakage_m3_s_per_pa: f64,
 }
 
 impl Valve {
@@ -165,7 +170,8 @@ impl HydraulicCircuit {
         } else {
             [valve.land_flow_m3_s(opening, p[0] - pt), -valve.land_flow_m3_s(opening, ps - p[1])]
         };
-        [q1 - self.relief_flow_m3_s(p[0]), q2 - self.relief_flow_m3_s(p[1])]
+        let leakage = |p: f64| valve.leakage_m3_s_per_pa * ((ps - p) - (p - pt));
+        [q1 + leakage(p[0]) - self.relief_flow_m3_s(p[0]), q2 + leakage(p[1]) - self.relief_flow_m3_s(p[1])]
     }
 
     /// Flow out of a chamber at pressure `p` through its relief valve (negative: in through
@@ -188,13 +194,38 @@ pub struct HydraulicDrive {
 }
 
 impl HydraulicDrive {
-    /// Chamber pressures (cap, rod) that hold a rod force `force_n` with the spool centred:
-    /// p₁ A₁ − p₂ A₂ = F and p₁ + p₂ = p_s + p_t (a matched valve's null), Pa.
-    pub fn holding_pressures_pa(&self, force_n: f64) -> [f64; 2] {
+    /// Chamber pressures (cap, rod) and spool opening that hold a rod force `force_n` at rest:
+    /// p₁ A₁ − p₂ A₂ = F with no net flow into either chamber. Without leakage the spool is
+    /// centred and p₁ + p₂ = p_s + p_t (a matched valve's null); with it, the spool opens just
+    /// enough to feed the leaks (Newton's method from there). `Err` when no such state lies
+    /// between tank and supply.
+    pub fn holding_state(&self, force_n: f64) -> Result<([f64; 2], f64), String> {
         let (a1, a2) = (self.cylinder.cap_area_m2(), self.cylinder.rod_area_m2());
-        let sum = self.circuit.supply_pressure_pa + self.circuit.tank_pressure_pa;
-        let p1 = (force_n + a2 * sum) / (a1 + a2);
-        [p1, sum - p1]
+        let (ps, pt) = (self.circuit.supply_pressure_pa, self.circuit.tank_pressure_pa);
+        let pressures = |p1: f64| [p1, (p1 * a1 - force_n) / a2];
+        let (mut p1, mut spool) = ((force_n + a2 * (ps + pt)) / (a1 + a2), 0.0);
+        let residual = |p1: f64, spool: f64| self.circuit.flows_m3_s(spool, pressures(p1));
+        for _ in 0..50 {
+            let r = residual(p1, spool);
+            if r[0].abs().max(r[1].abs()) < 1e-12 * self.circuit.valve.rated_flow_m3_s {
+                break;
+            }
+            let (dp, dx) = (1e-6 * ps, 1e-7);
+            let (rp, rx) = (residual(p1 + dp, spool), residual(p1, spool + dx));
+            let j = [[(rp[0] - r[0]) / dp, (rx[0] - r[0]) / dx], [(rp[1] - r[1]) / dp, (rx[1] - r[1]) / dx]];
+            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+            p1 -= (j[1][1] * r[0] - j[0][1] * r[1]) / det;
+            spool -= (-j[1][0] * r[0] + j[0][0] * r[1]) / det;
+        }
+        let p = pressures(p1);
+        if p.iter().chain([&spool]).any(|v| !v.is_finite()) || p.iter().any(|p| !(pt..=ps).contains(p)) {
+            return Err(format!(
+                "holding the arm at the start takes a rod force of {force_n:.0} N, which needs chamber pressures \
+                 {:.3e} and {:.3e} Pa outside tank to supply ({pt:.3e} to {ps:.3e} Pa)",
+                p[0], p[1]
+            ));
+        }
+        Ok((p, spool))
     }
 
     /// The spool opening whose flow at half the supply-to-tank drop moves the rod at `rate_m_s`.
@@ -235,7 +266,12 @@ mod tests {
 
     #[test]
     fn land_flow_follows_the_orifice_law_above_the_round_off() {
-        let v = Valve { rated_flow_m3_s: 1e-3, rated_pressure_drop_pa: 3.5e6, spool_time_constant_s: 0.01 };
+        let v = Valve {
+            rated_flow_m3_s: 1e-3,
+            rated_pressure_drop_pa: 3.5e6,
+            spool_time_constant_s: 0.01,
+            leakage_m3_s_per_pa: 0.0,
+        };
         for drop in [1e6, 3.5e6, 1e7] {
             let exact = 1e-3 * 0.5 * (drop / 3.5e6f64).sqrt();
             assert!((v.land_flow_m3_s(0.5, drop) / exact - 1.0).abs() < 1e-4);

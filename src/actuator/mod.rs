@@ -23,11 +23,13 @@ pub mod controller;
 pub mod hydraulic;
 mod plant;
 pub mod servo;
+mod summary;
 
 pub use controller::{Controller, ControllerGains};
 pub use hydraulic::{Cylinder, HydraulicCircuit, HydraulicDrive, Valve};
-pub use plant::{ActuatorOutputs, ActuatorPlant};
+pub use plant::{ActuatorOutputs, ActuatorPlant, Stroke};
 pub use servo::{ServoDrive, ServoMachine};
+pub use summary::ActuatorSummary;
 
 /// What turns the hub.
 #[derive(Debug, Clone, PartialEq, Default)]

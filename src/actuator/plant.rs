@@ -40,7 +40,14 @@ pub struct ActuatorPlant {
     pub reference: MotionProfile,
     /// The running controller.
     pub controller: Controller,
+    /// A cylinder's arm pin as rows over the arm's elastic coordinates (hub-frame axial and
+    /// transverse displacement), set by the arm it drives: the rod pushes on the deformed arm.
+    pub arm_pin_rows: Option<[DVector<f64>; 2]>,
 }
+
+/// The actuator's stroke as the arm's step hands it over: the hub's (θ, θ̇) for a servo, the
+/// cylinder's pin-to-pin (s, ṡ) for a hydraulic drive (rad and rad/s, or m and m/s).
+pub type Stroke = (f64, f64);
 
 impl ActuatorPlant {
     /// A plant for `actuator` (servo or hydraulic) tracking `reference`, its controller sampling
@@ -52,7 +59,12 @@ impl ActuatorPlant {
             Actuator::Servo(s) => s.machine.hub_torque_limit_n_m(),
             _ => 1.0,
         };
-        Some(ActuatorPlant { actuator, reference, controller: Controller::new(gains, period_s, limit) })
+        Some(ActuatorPlant {
+            actuator,
+            reference,
+            controller: Controller::new(gains, period_s, limit),
+            arm_pin_rows: None,
+        })
     }
 
     /// Second-order coordinates it adds (the servo's motor angle).
@@ -78,41 +90,52 @@ impl ActuatorPlant {
         }
     }
 
-    /// Torque on the hub (θ, θ̇), N·m, from its coordinates `x` and rates `v`.
-    pub fn hub_torque_n_m(&self, hub: (f64, f64), x: &[f64], v: &[f64]) -> f64 {
+    /// What it puts on the arm at `stroke` with its coordinates `x` and rates `v`: the torque on
+    /// the hub (servo, N·m) or the rod force (hydraulic, N, positive extending).
+    pub fn load(&self, stroke: Stroke, x: &[f64], v: &[f64]) -> f64 {
         match &self.actuator {
             Actuator::Ideal => 0.0,
-            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), hub),
-            Actuator::Hydraulic(h) => {
-                let (length, arm) = h.cylinder.length_and_arm(hub.0);
-                rod_force_n(h, length, arm * hub.1, v) * arm
-            }
+            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), stroke),
+            Actuator::Hydraulic(h) => rod_force_n(h, stroke, v),
         }
     }
 
     /// Writes the generalized forces of its coordinates into `f` (the motor's torques; the
     /// first-order states' rates).
-    pub fn forces(&self, hub: (f64, f64), x: &[f64], v: &[f64], f: &mut [f64]) {
+    pub fn forces(&self, stroke: Stroke, x: &[f64], v: &[f64], f: &mut [f64]) {
         match &self.actuator {
             Actuator::Ideal => {}
-            Actuator::Servo(s) => f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), hub),
-            Actuator::Hydraulic(h) => hydraulic_rates(h, hub, self.controller.output, v, f),
+            Actuator::Servo(s) => f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), stroke),
+            Actuator::Hydraulic(h) => hydraulic_rates(h, stroke, self.controller.output, v, f),
         }
     }
 
     /// Samples the controller if a sample is due at `t_s`, reading the state (θ, θ̇) of the hub
     /// and `x`, `v` of its own coordinates.
     pub fn sample_if_due(&mut self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) {
-        if !self.controller.due(t_s) {
+        if !self.controller.due(t_s) || matches!(self.actuator, Actuator::Ideal) {
             return;
         }
-        let reference = self.reference.sample(t_s);
-        let (measured, feedforward) = match &self.actuator {
-            Actuator::Ideal => return,
-            Actuator::Servo(_) => ((x[0], v[0]), self.controller.feedforward(&reference)),
-            Actuator::Hydraulic(h) => (hub, hydraulic_feedforward(h, &self.controller, &reference)),
-        };
+        let (reference, measured, feedforward) = self.measure(t_s, hub, x, v);
         self.controller.sample(&reference, measured.0, measured.1, feedforward);
+    }
+
+    /// The controller's law at this state as if it sampled continuously (unsaturated, the
+    /// integral as it stands): what the linearised closed loop sees.
+    pub fn continuous_output(&self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) -> f64 {
+        let (reference, measured, feedforward) = self.measure(t_s, hub, x, v);
+        self.controller.law(&reference, measured.0, measured.1, feedforward)
+    }
+
+    /// The reference at `t_s`, what the controller measures — the motor's (φ, φ̇) for a servo,
+    /// the hub's (θ, θ̇) for a cylinder — and the feed-forward.
+    fn measure(&self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) -> (DriveState, (f64, f64), f64) {
+        let reference = self.reference.sample(t_s);
+        match &self.actuator {
+            Actuator::Servo(_) => (reference, (x[0], v[0]), self.controller.feedforward(&reference)),
+            Actuator::Hydraulic(h) => (reference, hub, hydraulic_feedforward(h, &self.controller, &reference)),
+            Actuator::Ideal => (reference, hub, 0.0),
+        }
     }
 
     /// Time of the controller's next sample, s.
@@ -120,26 +143,28 @@ impl ActuatorPlant {
         self.controller.next_sample_s
     }
 
-    /// How far below the reference the hub rests when it holds a torque `torque_n_m` (against
-    /// gravity) at rest, rad: the drive train's twist, and a proportional controller's offset.
-    pub fn static_lag_rad(&self, torque_n_m: f64) -> f64 {
+    /// How far below the reference the hub rests when it holds `load` at rest (a servo's hub
+    /// torque, N·m; a cylinder's rod force, N), rad: the drive train's twist, and the offset a
+    /// proportional controller needs for its output (a servo's torque, a leaking valve's spool
+    /// opening).
+    pub fn static_lag_rad(&self, load: f64) -> f64 {
+        let c = &self.controller.gains;
+        // With integral action the integral holds the output (and without gains nothing does:
+        // `holding` refuses it).
+        let offset = |output: f64| if c.ki > 0.0 || c.kp <= 0.0 { 0.0 } else { output / c.kp };
         match &self.actuator {
-            Actuator::Servo(s) => {
-                let twist = torque_n_m / s.machine.stiffness_n_m_per_rad;
-                // Without integral action the proportional term holds the torque (and without
-                // gains nothing does: `holding` refuses it).
-                let c = &s.controller;
-                let offset = if c.ki > 0.0 || c.kp <= 0.0 { 0.0 } else { torque_n_m / c.kp };
-                twist + offset
-            }
-            _ => 0.0,
+            Actuator::Servo(s) => load / s.machine.stiffness_n_m_per_rad + offset(load),
+            Actuator::Hydraulic(h) => h.holding_state(load).map_or(0.0, |(_, spool)| offset(spool)),
+            Actuator::Ideal => 0.0,
         }
     }
 
-    /// Its coordinates and rates holding the hub at rest at `angle_rad` against a torque
-    /// `torque_n_m`, with the controller preset to hold it (the arm waits on its drive before
-    /// the lift). `Err` with a reason when the actuator cannot hold it.
-    pub fn holding(&mut self, angle_rad: f64, torque_n_m: f64) -> Result<(DVector<f64>, DVector<f64>), String> {
+    /// Its coordinates and rates holding the hub at rest at `angle_rad` with a load `load` (the
+    /// hub torque of a servo, N·m; the rod force of a cylinder, N), the controller preset to
+    /// hold it (the arm waits on its drive before the lift). `Err` with a reason when the
+    /// actuator cannot hold it.
+    pub fn holding(&mut self, angle_rad: f64, load: f64) -> Result<(DVector<f64>, DVector<f64>), String> {
+        let torque_n_m = load;
         let n = self.dofs();
         let (mut x, mut v) = (DVector::zeros(n), DVector::zeros(n));
         match &self.actuator {
@@ -158,59 +183,47 @@ impl ActuatorPlant {
                 }
             }
             Actuator::Hydraulic(h) => {
-                let (_, arm) = h.cylinder.length_and_arm(angle_rad);
-                let p = h.holding_pressures_pa(torque_n_m / arm);
-                let (pt, ps) = (h.circuit.tank_pressure_pa, h.circuit.supply_pressure_pa);
-                if p.iter().any(|p| !(pt..=ps).contains(p)) {
-                    return Err(format!(
-                        "holding the arm at the start takes a rod force of {:.0} N, which needs chamber pressures \
-                         {:.3e} and {:.3e} Pa outside tank to supply ({pt:.3e} to {ps:.3e} Pa)",
-                        torque_n_m / arm,
-                        p[0],
-                        p[1]
-                    ));
-                }
-                v[0] = p[0] / ps;
-                v[1] = p[1] / ps;
+                let (p, spool) = h.holding_state(load)?;
+                let ps = h.circuit.supply_pressure_pa;
+                (v[0], v[1], v[2]) = (p[0] / ps, p[1] / ps, spool);
+                self.controller.hold(spool);
+                return Ok((x, v));
             }
         }
-        self.controller.hold(if matches!(self.actuator, Actuator::Servo(_)) { torque_n_m } else { 0.0 });
+        self.controller.hold(torque_n_m);
         Ok((x, v))
     }
 
-    /// What it reports at time `t_s` with the hub at (θ, θ̇).
-    pub fn outputs(&self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) -> ActuatorOutputs {
-        let reference = self.reference.sample(t_s);
+    /// What it reports at time `t_s` with the hub at `angle_rad`, at `stroke`, putting
+    /// `hub_torque_n_m` on the hub.
+    pub fn outputs(&self, t_s: f64, angle_rad: f64, stroke: Stroke, hub_torque_n_m: f64, v: &[f64]) -> ActuatorOutputs {
         let mut out = ActuatorOutputs {
-            hub_torque_n_m: self.hub_torque_n_m(hub, x, v),
+            hub_torque_n_m,
             command: self.controller.output,
-            tracking_error_rad: reference.angle_rad - hub.0,
+            tracking_error_rad: self.reference.sample(t_s).angle_rad - angle_rad,
             ..ActuatorOutputs::default()
         };
         if let Actuator::Hydraulic(h) = &self.actuator {
-            let (length, arm) = h.cylinder.length_and_arm(hub.0);
             let ps = h.circuit.supply_pressure_pa;
-            out.rod_force_n = Some(rod_force_n(h, length, arm * hub.1, v));
+            out.rod_force_n = Some(rod_force_n(h, stroke, v));
             out.pressures_pa = Some([v[0] * ps, v[1] * ps]);
-            out.cylinder_length_m = Some(length);
+            out.cylinder_length_m = Some(stroke.0);
         }
         out
     }
 }
 
-/// Rod force (N) at length `length_m`, rod speed `rate_m_s` and scaled pressures `v[0..2]`.
-fn rod_force_n(h: &HydraulicDrive, length_m: f64, rate_m_s: f64, v: &[f64]) -> f64 {
+/// Rod force (N) at (length, rate) `stroke` and scaled pressures `v[0..2]`.
+fn rod_force_n(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> f64 {
     let ps = h.circuit.supply_pressure_pa;
     let c = &h.cylinder;
-    ps * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2()) + c.end_stop_force_n(length_m, rate_m_s)
+    ps * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2()) + c.end_stop_force_n(stroke.0, stroke.1)
 }
 
 /// Rates of the scaled pressures and of the spool (module doc of [`super::hydraulic`]).
-fn hydraulic_rates(h: &HydraulicDrive, hub: (f64, f64), command: f64, v: &[f64], f: &mut [f64]) {
+fn hydraulic_rates(h: &HydraulicDrive, (length, rate): Stroke, command: f64, v: &[f64], f: &mut [f64]) {
     let (c, circuit) = (&h.cylinder, &h.circuit);
     let ps = circuit.supply_pressure_pa;
-    let (length, arm) = c.length_and_arm(hub.0);
-    let rate = arm * hub.1;
     let (v1, v2) = c.volumes_m3(length);
     let spool = v[2];
     let [q1, q2] = circuit.flows_m3_s(spool.clamp(-1.0, 1.0), [v[0] * ps, v[1] * ps]);

@@ -5,7 +5,7 @@ use std::cell::Cell;
 use nalgebra::{DMatrix, DVector};
 
 use super::{ArmContact, ArmModel, Energies};
-use crate::actuator::ActuatorPlant;
+use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, Stroke};
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -268,14 +268,78 @@ impl<'a> ArmSystem<'a> {
 }
 
 impl ArmSystem<'_> {
-    /// Torque applied at the hub by a free hub's constant torque or its actuator, N·m.
-    fn applied_torque_n_m(&self, x: &DVector<f64>, v: &DVector<f64>) -> f64 {
+    /// Torque applied at the hub by a free hub's constant torque, N·m (an actuator's loads are
+    /// added by [`Self::add_actuator_forces`]).
+    fn applied_torque_n_m(&self) -> f64 {
         match self.drive {
-            HubDrive::Prescribed(_) => 0.0,
             HubDrive::Free { torque_n_m } => *torque_n_m,
-            HubDrive::Actuated(plant) => {
-                let own = 1 + self.arm.elastic_dofs();
-                plant.hub_torque_n_m((x[0], v[0]), &x.as_slice()[own..], &v.as_slice()[own..])
+            _ => 0.0,
+        }
+    }
+
+    /// The actuator's stroke at (x, v), and a cylinder's pin on the deformed arm.
+    fn actuator_stroke(&self, plant: &ActuatorPlant, x: &[f64], v: &[f64]) -> (Stroke, Option<ArmPin>) {
+        match (&plant.actuator, &plant.arm_pin_rows) {
+            (Actuator::Hydraulic(h), Some(rows)) => {
+                let n = self.arm.elastic_dofs();
+                let (q, qd) = (&x[1..1 + n], &v[1..1 + n]);
+                let pin = ArmPin::at(&h.cylinder, rows, (x[0], v[0]), q, qd);
+                (pin.stroke, Some(pin))
+            }
+            _ => ((x[0], v[0]), None),
+        }
+    }
+
+    /// Adds the actuator's generalized forces at (x, v) to `f`: its load on the hub (a servo's
+    /// torque) or on the arm through the cylinder's pin (the rod force's moment on θ and its
+    /// work through q), and its own coordinates' forces and rates.
+    pub(crate) fn add_actuator_forces(&self, x: &[f64], v: &[f64], f: &mut [f64]) {
+        let Some(plant) = self.drive.plant() else { return };
+        let own = 1 + self.arm.elastic_dofs();
+        let (stroke, pin) = self.actuator_stroke(plant, x, v);
+        let load = plant.load(stroke, &x[own..], &v[own..]);
+        match (pin, &plant.arm_pin_rows) {
+            (Some(pin), Some(rows)) => {
+                f[0] += load * pin.lever_m;
+                for (i, fi) in f[1..own].iter_mut().enumerate() {
+                    *fi += load * (pin.body_unit[0] * rows[0][i] + pin.body_unit[1] * rows[1][i]);
+                }
+            }
+            _ => f[0] += load,
+        }
+        let mut rates = [0.0; 4];
+        let m = plant.dofs();
+        plant.forces(stroke, &x[own..], &v[own..], &mut rates[..m]);
+        f[own..own + m].iter_mut().zip(&rates).for_each(|(fi, r)| *fi += r);
+    }
+
+    /// What the actuator reports at (x, v) and time `t_s`: its moment about the pivot with its
+    /// own outputs.
+    pub(crate) fn actuator_outputs(&self, t_s: f64, x: &[f64], v: &[f64]) -> Option<ActuatorOutputs> {
+        let plant = self.drive.plant()?;
+        let own = 1 + self.arm.elastic_dofs();
+        let (stroke, pin) = self.actuator_stroke(plant, x, v);
+        let load = plant.load(stroke, &x[own..], &v[own..]);
+        let hub_torque = pin.map_or(load, |pin| load * pin.lever_m);
+        Some(plant.outputs(t_s, x[0], stroke, hub_torque, &v[own..]))
+    }
+
+    /// Solves the free hub's M ẍ = rhs by eliminating q̈ with the constant M_qq⁻¹:
+    /// θ̈ = (f_θ − S̃ᵀ M⁻¹ f_q) / (Ĵ − S̃ᵀ M⁻¹ S̃), q̈ = M⁻¹ (f_q − S̃ θ̈); the actuator's own
+    /// coordinates have a diagonal mass of their own. O(n²) instead of a factorisation per stage.
+    fn solve_free_hub_mass(&self, x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) {
+        let a = self.arm;
+        let n = a.elastic_dofs();
+        let q = x.rows(1, n).into_owned();
+        let coupling = self.coupling(&q);
+        let inverse = &a.mass_inverse;
+        let (y, w) = (inverse * rhs.rows(1, n), inverse * &coupling);
+        let theta_dd = (rhs[0] - coupling.dot(&y)) / (self.pivot_inertia(&q) - coupling.dot(&w));
+        out[0] = theta_dd;
+        out.rows_mut(1, n).copy_from(&(y - theta_dd * w));
+        if let Some(plant) = self.drive.plant() {
+            for i in 0..plant.dofs() {
+                out[1 + n + i] = rhs[1 + n + i] / plant.mass(i);
             }
         }
     }
@@ -306,37 +370,73 @@ impl ArmSystem<'_> {
         }
     }
 
-    /// The actuator's tangents, by central differences over the hub's (θ, θ̇) and its own
-    /// coordinates (a handful: cheaper than deriving each machine's by hand, and exact enough
-    /// for Newton).
+    /// The actuator's tangents, by central differences of [`Self::add_actuator_forces`] over the
+    /// coordinates it reads (θ, q for a cylinder's pin, its own) and their rates: a few
+    /// evaluations of a few flops each, exact enough for Newton.
     fn add_actuator_tangents(&self, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         let Some(plant) = self.drive.plant() else { return };
+        let n = x.len();
         let own = 1 + self.arm.elastic_dofs();
-        let m = plant.dofs();
-        // Outputs: the hub torque (row 0) and the plant's own forces (rows own..).
-        let rows: Vec<usize> = std::iter::once(0).chain(own..own + m).collect();
-        let eval = |x: &[f64], v: &[f64], out: &mut [f64]| {
-            out[0] = plant.hub_torque_n_m((x[0], v[0]), &x[own..], &v[own..]);
-            plant.forces((x[0], v[0]), &x[own..], &v[own..], &mut out[1..]);
-        };
+        let read = if plant.arm_pin_rows.is_some() { 0..n } else { 0..1 };
+        let columns: Vec<usize> = read.chain(own..n).collect();
         let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
-        let (mut plus, mut minus) = (vec![0.0; m + 1], vec![0.0; m + 1]);
-        for (is_rate, target) in [(false, &mut *k), (true, &mut *c)] {
-            for &j in &rows {
-                let values = if is_rate { &mut vp } else { &mut xp };
-                let x0 = values[j];
-                let h = 1e-7 * x0.abs().max(1e-3);
-                values[j] = x0 + h;
-                eval(&xp, &vp, &mut plus);
-                let values = if is_rate { &mut vp } else { &mut xp };
-                values[j] = x0 - h;
-                eval(&xp, &vp, &mut minus);
-                let values = if is_rate { &mut vp } else { &mut xp };
-                values[j] = x0;
-                for (r, &i) in rows.iter().enumerate() {
-                    target[(i, j)] -= (plus[r] - minus[r]) / (2.0 * h);
+        let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
+        for is_rate in [false, true] {
+            for &j in &columns {
+                let value = if is_rate { vp[j] } else { xp[j] };
+                let h = 1e-7 * value.abs().max(1e-3);
+                for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
+                    if is_rate {
+                        vp[j] = value + sign * h
+                    } else {
+                        xp[j] = value + sign * h
+                    }
+                    out.fill(0.0);
+                    self.add_actuator_forces(&xp, &vp, out);
+                }
+                if is_rate {
+                    vp[j] = value
+                } else {
+                    xp[j] = value
+                }
+                let target = if is_rate { &mut *c } else { &mut *k };
+                for i in 0..n {
+                    target[(i, j)] -= (plus[i] - minus[i]) / (2.0 * h);
                 }
             }
+        }
+    }
+}
+
+/// A cylinder's arm pin on the deformed arm, and what the rod force does through it.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ArmPin {
+    /// Pin-to-pin length and its rate, m and m/s.
+    pub stroke: Stroke,
+    /// Moment about the pivot per newton of rod force, m.
+    pub lever_m: f64,
+    /// The rod's direction (base to arm pin) in the hub frame.
+    pub body_unit: [f64; 2],
+}
+
+impl ArmPin {
+    /// The pin of `cylinder` with displacement `rows` over q, the hub at (θ, θ̇) and the arm at
+    /// (q, q̇).
+    pub(crate) fn at(cylinder: &Cylinder, rows: &[DVector<f64>; 2], hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
+        let [ax, ay] = cylinder.arm_pin_m;
+        let body = [ax + dot(&rows[0], q), ay + dot(&rows[1], q)];
+        // Hub-frame velocity of the pin: its elastic rate plus the frame's rotation θ̇ k × r.
+        let body_rate = [dot(&rows[0], qd) - hub.1 * body[1], dot(&rows[1], qd) + hub.1 * body[0]];
+        let (s, c) = hub.0.sin_cos();
+        let world = |r: [f64; 2]| [c * r[0] - s * r[1], s * r[0] + c * r[1]];
+        let (point, velocity) = (world(body), world(body_rate));
+        let d = [point[0] - cylinder.base_pin_m[0], point[1] - cylinder.base_pin_m[1]];
+        let length = d[0].hypot(d[1]);
+        let unit = [d[0] / length, d[1] / length];
+        ArmPin {
+            stroke: (length, unit[0] * velocity[0] + unit[1] * velocity[1]),
+            lever_m: point[0] * unit[1] - point[1] * unit[0],
+            body_unit: [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]],
         }
     }
 }
@@ -385,25 +485,26 @@ impl Dynamics for ArmSystem<'_> {
             HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let (hub, q, qd) = self.split_free_hub(x, v);
                 let n = q.len();
-                f[0] = self.hub_force(&hub, &q, &qd, self.applied_torque_n_m(x, v));
+                f[0] = self.hub_force(&hub, &q, &qd, self.applied_torque_n_m());
                 let (elastic, own) = f.as_mut_slice()[1..].split_at_mut(n);
                 elastic.fill(0.0);
+                own.fill(0.0);
                 self.add_elastic_forces(&hub, hub.angle_rad.sin_cos(), &q, &qd, elastic);
-                if let Some(plant) = self.drive.plant() {
-                    let (x_own, v_own) = (&x.as_slice()[1 + n..], &v.as_slice()[1 + n..]);
-                    plant.forces((x[0], v[0]), x_own, v_own, own);
-                }
+                self.add_actuator_forces(x.as_slice(), v.as_slice(), f.as_mut_slice());
             }
         }
     }
 
-    fn solve_mass(&self, _t: f64, _x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) -> bool {
+    fn solve_mass(&self, _t: f64, x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) -> bool {
         match self.drive {
             HubDrive::Prescribed(_) => {
                 out.gemv(1.0, &self.arm.mass_inverse, rhs, 0.0);
                 true
             }
-            HubDrive::Free { .. } | HubDrive::Actuated(_) => false,
+            HubDrive::Free { .. } | HubDrive::Actuated(_) => {
+                self.solve_free_hub_mass(x, rhs, out);
+                true
+            }
         }
     }
 

@@ -23,6 +23,7 @@
 
 mod contact;
 mod dynamics;
+mod linear;
 mod sim;
 
 use nalgebra::{DMatrix, DVector};
@@ -252,10 +253,16 @@ impl ArmModel {
     /// Static elastic coordinates under gravity with the hub held at `angle_rad`:
     /// (K − g sin θ K_g) q = −g (sin θ b_u + cos θ b_v).
     pub fn static_deflection(&self, angle_rad: f64) -> Result<DVector<f64>, ArmError> {
+        self.static_deflection_under(angle_rad, &DVector::zeros(self.elastic_dofs()))
+    }
+
+    /// [`Self::static_deflection`] with generalized forces `extra` on q besides gravity (a
+    /// cylinder holding the arm).
+    pub fn static_deflection_under(&self, angle_rad: f64, extra: &DVector<f64>) -> Result<DVector<f64>, ArmError> {
         let g = self.options.gravity_m_s2;
         let (s, c) = angle_rad.sin_cos();
         let k = &self.stiffness - s * &self.gravity_stiffness;
-        let load = -g * (s * &self.axial_mass + c * &self.transverse_mass);
+        let load = -g * (s * &self.axial_mass + c * &self.transverse_mass) + extra;
         if load.is_empty() {
             return Ok(load);
         }

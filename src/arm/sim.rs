@@ -4,9 +4,9 @@ use std::borrow::Cow;
 
 use nalgebra::DVector;
 
-use super::dynamics::{HubCache, dot};
+use super::dynamics::{ArmPin, HubCache, dot};
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
-use crate::actuator::{ActuatorOutputs, ActuatorPlant};
+use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant};
 use crate::drive::DriveState;
 use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
 
@@ -92,26 +92,19 @@ impl ArmSimulation {
 
     /// Starts an actuated hub in static equilibrium, its actuator holding it.
     fn held_by(arm: ArmModel, mut plant: Box<ActuatorPlant>, integrator: IntegratorKind) -> Result<Self, ArmError> {
-        let reference_rad = plant.reference.sample(0.0).angle_rad;
-        let g = arm.options.gravity_m_s2;
-        let (mut angle, mut q0, mut torque) = (reference_rad, DVector::zeros(0), 0.0);
-        // The lag depends on the torque held and the torque on the angle: a fixed point that a
-        // stiff drive reaches in a few passes.
-        for _ in 0..6 {
-            q0 = arm.static_deflection(angle)?;
-            torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
-            angle = reference_rad - plant.static_lag_rad(torque);
+        if let Actuator::Hydraulic(h) = &plant.actuator {
+            let [u, v, slope] = arm.station_rows(h.cylinder.arm_pin_m[0]).0;
+            plant.arm_pin_rows = Some([u - h.cylinder.arm_pin_m[1] * slope, v]);
         }
-        let (own_x, own_v) = plant.holding(angle, torque).map_err(|why| ArmError::InvalidParameter {
+        let (angle, q0, load) = static_hold(&arm, &plant)?;
+        let (own_x, own_v) = plant.holding(angle, load).map_err(|why| ArmError::InvalidParameter {
             name: "actuator".into(),
-            value: torque,
+            value: load,
             allowed: why,
         })?;
         let n = arm.elastic_dofs();
-        let x = DVector::from_iterator(
-            1 + n + own_x.len(),
-            std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied()),
-        );
+        let coordinates = std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied());
+        let x = DVector::from_iterator(1 + n + own_x.len(), coordinates);
         let mut v = DVector::zeros(x.len());
         v.rows_mut(1 + n, own_v.len()).copy_from(&own_v);
         Self::from_coordinates(arm, HubDrive::Actuated(plant), integrator, x, v)
@@ -241,21 +234,25 @@ impl ArmSimulation {
     /// diagonal and apart from the arm's: exact, no solve).
     fn sample_controller(&mut self) {
         let own = 1 + self.arm.elastic_dofs();
-        let HubDrive::Actuated(plant) = &mut self.drive else { return };
-        let s = &mut self.state;
-        let hub = (s.x[0], s.v[0]);
-        let (x, v) = (&s.x.as_slice()[own..], &s.v.as_slice()[own..]);
-        let mut before = vec![0.0; plant.dofs()];
-        plant.forces(hub, x, v, &mut before);
-        let output = plant.controller.output;
-        plant.sample_if_due(s.t, hub, x, v);
-        if plant.controller.output == output {
-            return;
+        let Some(output) = self.drive.plant().map(|p| p.controller.output) else { return };
+        let forces = |sim: &Self| {
+            let mut f = vec![0.0; sim.state.x.len()];
+            let system = ArmSystem::new(&sim.arm, &sim.drive, &sim.load, &sim.contacts, &sim.hub);
+            system.add_actuator_forces(sim.state.x.as_slice(), sim.state.v.as_slice(), &mut f);
+            f
+        };
+        let before = forces(self);
+        if let HubDrive::Actuated(plant) = &mut self.drive {
+            let s = &self.state;
+            plant.sample_if_due(s.t, (s.x[0], s.v[0]), &s.x.as_slice()[own..], &s.v.as_slice()[own..]);
+            if plant.controller.output == output {
+                return;
+            }
         }
-        let mut after = vec![0.0; plant.dofs()];
-        plant.forces(hub, x, v, &mut after);
-        for (i, (b, a)) in before.iter().zip(&after).enumerate() {
-            s.a[own + i] += (a - b) / plant.mass(i);
+        let after = forces(self);
+        let Some(plant) = self.drive.plant() else { return };
+        for i in 0..plant.dofs() {
+            self.state.a[own + i] += (after[own + i] - before[own + i]) / plant.mass(i);
         }
     }
 
@@ -415,10 +412,7 @@ impl ArmSimulation {
         // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
         let vel_body = [ud - w * v, vd + w * (l + u)];
         let (mut drive_torque_n_m, energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
-        let actuator = self.drive.plant().map(|plant| {
-            let own = 1 + self.arm.elastic_dofs();
-            plant.outputs(s.t, (s.x[0], s.v[0]), &s.x.as_slice()[own..], &s.v.as_slice()[own..])
-        });
+        let actuator = system.actuator_outputs(s.t, s.x.as_slice(), s.v.as_slice());
         if let Some(outputs) = &actuator {
             drive_torque_n_m = outputs.hub_torque_n_m;
         }
@@ -439,4 +433,30 @@ impl ArmSimulation {
 
 fn prepend(first: f64, rest: &DVector<f64>) -> DVector<f64> {
     DVector::from_iterator(rest.len() + 1, std::iter::once(first).chain(rest.iter().copied()))
+}
+
+/// The hub's angle, the arm's deflection and the actuator's load (hub torque or rod force) at
+/// rest with the actuator holding the arm: gravity on the hub balanced by the actuator, the arm
+/// deflected by gravity and by a cylinder's pin force, the hub short of the reference by the
+/// drive's static lag. Each depends on the others: a fixed point a stiff drive reaches in a few
+/// passes.
+fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<(f64, DVector<f64>, f64), ArmError> {
+    let reference_rad = plant.reference.sample(0.0).angle_rad;
+    let g = arm.options.gravity_m_s2;
+    let n = arm.elastic_dofs();
+    let (mut angle, mut pin_load, mut load) = (reference_rad, DVector::zeros(n), 0.0);
+    let mut q0 = DVector::zeros(n);
+    for _ in 0..12 {
+        q0 = arm.static_deflection_under(angle, &pin_load)?;
+        let torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
+        load = torque;
+        if let (Actuator::Hydraulic(h), Some(rows)) = (&plant.actuator, &plant.arm_pin_rows) {
+            let zero = vec![0.0; n];
+            let pin = ArmPin::at(&h.cylinder, rows, (angle, 0.0), q0.as_slice(), &zero);
+            load = torque / pin.lever_m;
+            pin_load = load * (pin.body_unit[0] * &rows[0] + pin.body_unit[1] * &rows[1]);
+        }
+        angle = reference_rad - plant.static_lag_rad(load);
+    }
+    Ok((angle, q0, load))
 }

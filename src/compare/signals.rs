@@ -1,6 +1,7 @@
 //! The signals of a run a measured column may name: every sensor's channels and the run's own
 //! series, each with its SI unit and the recording's plot it belongs in.
 
+use crate::actuator::{Actuator, ActuatorOutputs};
 use crate::model::Model;
 use crate::run::Series;
 
@@ -15,6 +16,27 @@ enum Source {
     DriveTorque,
     ContactForce(usize),
     Sensor { index: usize, channel: usize },
+    Actuator(ActuatorSignal),
+}
+
+/// One of an actuator's outputs ([`ActuatorOutputs`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum ActuatorSignal {
+    TrackingError,
+    Command,
+    RodForce,
+    Pressure(usize),
+}
+
+impl ActuatorSignal {
+    fn of(self, o: &ActuatorOutputs) -> f64 {
+        match self {
+            ActuatorSignal::TrackingError => o.tracking_error_rad,
+            ActuatorSignal::Command => o.command,
+            ActuatorSignal::RodForce => o.rod_force_n.unwrap_or(f64::NAN),
+            ActuatorSignal::Pressure(k) => o.pressures_pa.map_or(f64::NAN, |p| p[k]),
+        }
+    }
 }
 
 /// A signal of a run, before it has run: name, unit and plot.
@@ -44,6 +66,7 @@ impl SignalDef {
             Source::DriveTorque => series.drive_torque_n_m.clone(),
             Source::ContactForce(pad) => series.pad_force_n[pad].clone(),
             Source::Sensor { index, channel } => series.sensors[index].values.iter().map(|v| v[channel]).collect(),
+            Source::Actuator(signal) => series.actuator.iter().map(|o| signal.of(o)).collect(),
         }
     }
 }
@@ -79,5 +102,27 @@ pub fn signal_defs(model: &Model) -> Vec<SignalDef> {
         let entity = crate::record::force_entity(&dampener.name);
         defs.push(def(format!("contact_force.{}", dampener.name), "N", entity, 1.0, Source::ContactForce(pad)));
     }
+    defs.extend(actuator_defs(&model.drive.actuator).into_iter().map(|(name, unit, entity, scale, signal)| {
+        def(name.into(), unit, entity.into(), scale, Source::Actuator(signal))
+    }));
+    defs
+}
+
+/// The actuator's signals: (name, unit, plot, plot scale, output).
+fn actuator_defs(actuator: &Actuator) -> Vec<(&'static str, &'static str, &'static str, f64, ActuatorSignal)> {
+    let degrees = 180.0 / std::f64::consts::PI;
+    let mut defs = match actuator {
+        Actuator::Ideal => return Vec::new(),
+        Actuator::Servo(_) => vec![("actuator.command", "N*m", "plots/actuator/command", 1.0, ActuatorSignal::Command)],
+        Actuator::Hydraulic(_) => vec![
+            ("actuator.command", "1", "plots/actuator/command", 1.0, ActuatorSignal::Command),
+            ("actuator.rod_force", "N", "plots/actuator/rod_force", 1.0, ActuatorSignal::RodForce),
+            ("actuator.pressure.cap", "Pa", "plots/actuator/pressure/cap", 1.0, ActuatorSignal::Pressure(0)),
+            ("actuator.pressure.rod", "Pa", "plots/actuator/pressure/rod", 1.0, ActuatorSignal::Pressure(1)),
+        ],
+    };
+    let tracking =
+        ("actuator.tracking_error", "rad", "plots/actuator/tracking_error_deg", degrees, ActuatorSignal::TrackingError);
+    defs.insert(0, tracking);
     defs
 }

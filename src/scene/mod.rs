@@ -265,6 +265,10 @@ impl Scene {
             pads: pads.collect(),
             pivot_m: self.pivot_m,
             length_m: self.arm.arm.length_m(),
+            cylinder: match self.arm.drive.plant().map(|p| &p.actuator) {
+                Some(crate::actuator::Actuator::Hydraulic(h)) => Some(h.cylinder),
+                _ => None,
+            },
         }
     }
 
@@ -315,6 +319,8 @@ pub struct SceneLayout {
     pub pivot_m: [f64; 3],
     /// Arm length, m.
     pub length_m: f64,
+    /// The hydraulic cylinder that drives the hub, if one does.
+    pub cylinder: Option<crate::actuator::Cylinder>,
 }
 
 /// The scene at one instant, for drawing.
