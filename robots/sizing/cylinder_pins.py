@@ -58,7 +58,8 @@ def scan():
     return rows
 
 
-def report(base, arm, bore, rod, closed, stroke, hose_l):
+def report(base, arm, bore, rod, closed, stroke, dead_volumes_m3):
+    """The design's lengths, levers, holding pressures and oil spring (robots/README.md)."""
     a1 = np.pi / 4 * bore**2
     a2 = np.pi / 4 * (bore**2 - rod**2)
     print(f"\nbase pin {base}, arm pin {arm}, bore/rod {bore * 1e3:.0f}/{rod * 1e3:.0f} mm")
@@ -66,27 +67,23 @@ def report(base, arm, bore, rod, closed, stroke, hose_l):
     for deg in (np.degrees(JOINT[0]), 0, 30, 45, 60, 90, np.degrees(JOINT[1])):
         s, r = length_and_arm(base, arm, np.radians(deg))
         print(f"  {deg:6.1f} deg: s = {s:.4f} m (extension {s - closed:+.4f} of {stroke}), ds/dtheta = {r:.4f} m")
-    path = np.linspace(0, np.pi / 2, 901)
-    _, r = length_and_arm(base, arm, path)
+    _, r = length_and_arm(base, arm, np.linspace(0, np.pi / 2, 901))
     print(f"  moment arm over 0..90: {r.min():.4f} .. {r.max():.4f} m")
-    s_joint = length_and_arm(base, arm, np.linspace(*JOINT, 2001))[0]
+    s_joint, _ = length_and_arm(base, arm, np.linspace(*JOINT, 2001))
     print(f"  over the joint's range: s {s_joint.min():.4f} .. {s_joint.max():.4f}; "
           f"margins {s_joint.min() - closed:.4f} (closed), {closed + stroke - s_joint.max():.4f} (stroke)")
     print(f"  closed - stroke = {closed - stroke:.3f} m (the cylinder's dead length)")
-    for ps, pt in ((21e6, 0.5e6),):
-        for name, kg in (("no string", 0.0), ("2-7/8 (121 kg)", 121.0), ("4-1/2 (200 kg)", 200.2)):
-            torque, _ = gravity_moment_n_m(kg)
-            _, r0 = length_and_arm(base, arm, 0.0)
-            force = torque / r0
-            p1 = (force + a2 * (ps + pt)) / (a1 + a2)
-            p2 = ps + pt - p1
-            print(f"  {name}: T = {torque / 1e3:.1f} kN*m, F = {force / 1e3:.1f} kN, "
-                  f"p1 = {p1 / 1e6:.2f} MPa, p2 = {p2 / 1e6:.2f} MPa (ps {ps / 1e6}, pt {pt / 1e6})")
-    hose = hose_l * 1e-3
-    # Cylinder dead space: the piston's end clearance, ~25 mm of bore on each side.
-    v1 = a1 * 0.025 + hose
-    v2 = a2 * 0.025 + hose
-    print(f"  dead volumes: cap {v1 * 1e3:.2f} L, rod {v2 * 1e3:.2f} L")
+    ps, pt = 21e6, 0.5e6
+    for name, kg in (("no string", 0.0), ("2-7/8 (121 kg)", 121.0), ("4-1/2 (200 kg)", 200.2)):
+        torque, _ = gravity_moment_n_m(kg)
+        force = torque / length_and_arm(base, arm, 0.0)[1]
+        p1 = (force + a2 * (ps + pt)) / (a1 + a2)
+        print(f"  {name}: T = {torque / 1e3:.1f} kN*m, F = {force / 1e3:.1f} kN, "
+              f"p1 = {p1 / 1e6:.2f} MPa, p2 = {(ps + pt - p1) / 1e6:.2f} MPa (ps {ps / 1e6}, pt {pt / 1e6} MPa)")
+    # Dead volumes: 25 mm of bore at each end of the stroke, plus 2 m of 1 in hose (1.0 L).
+    hose = 2.0 * np.pi / 4 * 0.0254**2
+    print(f"  dead volume estimate: cap {(a1 * 0.025 + hose) * 1e3:.2f} L, rod {(a2 * 0.025 + hose) * 1e3:.2f} L")
+    v1, v2 = dead_volumes_m3
     beta = 1.2e9
     for deg in (0.0, 45.0, 90.0):
         s, r = length_and_arm(base, arm, np.radians(deg))
@@ -104,3 +101,5 @@ if __name__ == "__main__":
     print(f"{len(rows)} feasible pairs; best by the smallest moment arm over 0..90 deg:")
     for row in rows[:15]:
         print("  r_min {:.3f} r0 {:.3f}  base ({:+.2f}, {:+.2f})  arm ({:.2f}, {:+.2f})  closed {:.3f} stroke {:.3f}".format(*row))
+    # The design in robots/pipe_arm.urdf: the best pair, round lengths, ISO 3320 180/100 mm.
+    report((0.40, -0.50), (2.00, -0.70), 0.180, 0.100, 1.56, 1.00, (1.65e-3, 1.45e-3))
