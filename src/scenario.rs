@@ -6,6 +6,8 @@
 //! because that is how rig engineers state them, and are converted to radians here. Paths
 //! (`robot`, a table drive's `file`) are relative to the scenario file.
 
+mod actuator;
+
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
@@ -22,6 +24,8 @@ use crate::model::{
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
+
+pub use actuator::ActuatorSpec;
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
 pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -62,8 +66,13 @@ pub struct ScenarioSpec {
     /// What the gripper holds.
     #[serde(default)]
     pub payload: PayloadSpec,
-    /// The hub motion.
+    /// The hub motion: the reference the actuator tracks.
     pub drive: DriveSpec,
+    /// What tracks the drive's profile (default: ideal, the hub follows it exactly). Left out of
+    /// the canonical form when ideal, so that a sweep's case hashes do not change for scenarios
+    /// without it.
+    #[serde(default, skip_serializing_if = "ActuatorSpec::is_ideal")]
+    pub actuator: ActuatorSpec,
     /// Rubber dampeners.
     #[serde(default)]
     pub dampeners: Vec<DampenerSpec>,
@@ -261,6 +270,7 @@ impl Scenario {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
         }
         let motion = check.drive(&spec.drive)?;
+        let actuator = check.actuator(&spec.actuator, &robot)?;
         let payload = check.payload(&spec.payload, &robot)?;
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
@@ -269,7 +279,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator: crate::actuator::Actuator::Ideal },
+            drive: Drive { motion, actuator },
             dampeners: dampeners?,
             contact: spec.contact,
             fidelity: match spec.model {
@@ -347,7 +357,7 @@ impl Check<'_> {
         if let Some(held) = model.payload.string() {
             self.clamp(held, &model.robot)?;
         }
-        Ok(())
+        self.actuator_in_scene(model)
     }
 
     fn damping_ratios(&self, ratios: &[f64]) -> Result<Vec<f64>, ScenarioError> {

@@ -134,3 +134,148 @@ fn scenario_errors_name_file_key_and_range() {
     let m = load_error("block", |t| t.replace("kind = \"string\"\nsize = \"2-7/8\"", "kind = \"block\"\nblock = 4"));
     assert!(m.contains("payload.block") && m.contains("1, 2, 3"), "{m}");
 }
+
+/// A hydraulic `[actuator]` table for the full-scale arm (plausible values; the checks are
+/// what these tests exercise).
+const HYDRAULIC: &str = "
+[actuator]
+kind = \"hydraulic\"
+supply_pressure_pa = 21e6
+tank_pressure_pa = 0.5e6
+bulk_modulus_pa = 1.2e9
+relief_pressure_pa = 23e6
+valve = { rated_flow_m3_s = 2.5e-3, rated_pressure_drop_pa = 3.5e6, spool_time_constant_s = 0.015 }
+controller = { kp = 5.0, velocity_feedforward = 1.0 }
+";
+
+/// A servo `[actuator]` table.
+const SERVO: &str = "
+[actuator]
+kind = \"servo\"
+controller = { kp = 2e7, kd = 1e6, velocity_feedforward = 0.0 }
+";
+
+/// `pipearm run` on the default scenario with `edit` applied, beside the full-scale robot with
+/// `robot_edit` applied, in a fresh folder: it must fail naming the scenario file, without a
+/// panic, and write nothing. Returns its error output.
+fn refused_run(tag: &str, edit: impl Fn(String) -> String, robot_edit: impl Fn(String) -> String) -> String {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = std::env::temp_dir().join(format!("pipearm-bad-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let robot = std::fs::read_to_string(root.join("robots/pipe_arm.urdf")).unwrap();
+    std::fs::write(dir.join("arm.urdf"), robot_edit(robot)).unwrap();
+    let scenario = std::fs::read_to_string(root.join("scenarios/default.toml")).unwrap();
+    let path = dir.join("bad.toml");
+    std::fs::write(&path, edit(scenario.replace("../robots/pipe_arm.urdf", "arm.urdf"))).unwrap();
+    let out = dir.join("out");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args(["run", path.to_str().unwrap(), "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let wrote = out.exists();
+    std::fs::remove_dir_all(&dir).ok();
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert!(!output.status.success(), "{tag}: the run succeeded");
+    assert!(!wrote, "{tag}: a refused run wrote {}", out.display());
+    assert!(!stderr.contains("panicked"), "{tag}: {stderr}");
+    assert!(stderr.contains(&path.display().to_string()), "{tag}: the error does not name the file: {stderr}");
+    stderr
+}
+
+/// Appends `table` to the scenario.
+fn with(table: impl Into<String>) -> impl Fn(String) -> String {
+    let table = table.into();
+    move |t| t + &table
+}
+
+fn same(t: String) -> String {
+    t
+}
+
+#[test]
+fn actuator_tables_are_checked_naming_the_key() {
+    let m = refused_run("kind", with("\n[actuator]\nkind = \"pneumatic\"\n"), same);
+    assert!(m.contains("pneumatic") && m.contains("`ideal`, `servo`, `hydraulic`"), "{m}");
+    let m = refused_run("typo", with(HYDRAULIC.replace("supply_pressure_pa", "supply_presure_pa")), same);
+    assert!(m.contains("supply_presure_pa") && m.contains("[actuator]"), "{m}");
+    let m = refused_run("bulk", with(HYDRAULIC.replace("bulk_modulus_pa = 1.2e9", "bulk_modulus_pa = 0")), same);
+    assert!(m.contains("key `actuator.bulk_modulus_pa`") && m.contains("bulk_modulus_pa > 0"), "{m}");
+    let m = refused_run("tank", with(HYDRAULIC.replace("tank_pressure_pa = 0.5e6", "tank_pressure_pa = 22e6")), same);
+    assert!(m.contains("key `actuator.supply_pressure_pa`") && m.contains("> tank_pressure_pa"), "{m}");
+    let m =
+        refused_run("relief", with(HYDRAULIC.replace("relief_pressure_pa = 23e6", "relief_pressure_pa = 20e6")), same);
+    assert!(m.contains("key `actuator.relief_pressure_pa`") && m.contains("> supply_pressure_pa"), "{m}");
+    let m = refused_run(
+        "spool",
+        with(HYDRAULIC.replace("spool_time_constant_s = 0.015", "spool_time_constant_s = -0.01")),
+        same,
+    );
+    assert!(m.contains("key `actuator.valve.spool_time_constant_s`"), "{m}");
+    let m = refused_run("kp", with(SERVO.replace("kp = 2e7", "kp = 0")), same);
+    assert!(m.contains("key `actuator.controller.kp`") && m.contains("kp > 0"), "{m}");
+    let m = refused_run("kd", with(SERVO.replace("kd = 1e6", "kd = -1e6")), same);
+    assert!(m.contains("key `actuator.controller.kd`") && m.contains("kd >= 0"), "{m}");
+    // The default scene steps every 3 ms: a controller cannot sample faster than that.
+    let m = refused_run("rate", with(SERVO.replace("kd = 1e6", "kd = 1e6, rate_hz = 1000.0")), same);
+    assert!(m.contains("key `actuator.controller.rate_hz`") && m.contains("time.step_s = 0.003"), "{m}");
+    let m = refused_run(
+        "free-step",
+        |t| {
+            t.replace("method = \"rk4\"", "method = \"generalized-alpha\"\nrho_inf = 0.8")
+                .replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01")
+                + HYDRAULIC
+        },
+        same,
+    );
+    assert!(m.contains("key `time.free_step_s`") && m.contains("hydraulic"), "{m}");
+}
+
+#[test]
+fn an_actuator_the_robot_lacks_is_named() {
+    let drop = |element: &'static str| {
+        move |t: String| {
+            let a = t.find(&format!("<pipearm:{element} ")).unwrap();
+            let b = a + t[a..].find("/>").unwrap() + 2;
+            format!("{}{}", &t[..a], &t[b..])
+        }
+    };
+    let m = refused_run("no-cylinder", with(HYDRAULIC), drop("cylinder"));
+    assert!(m.contains("key `actuator.kind`") && m.contains("<pipearm:cylinder>") && m.contains("joint `lift`"), "{m}");
+    assert!(m.contains("arm.urdf"), "the error names the robot file: {m}");
+    let m = refused_run("no-servo", with(SERVO), drop("servo"));
+    assert!(m.contains("key `actuator.kind`") && m.contains("<pipearm:servo>"), "{m}");
+}
+
+#[test]
+fn a_cylinder_out_of_its_stroke_on_the_path_is_named() {
+    // At 0 deg the pins are 1.6125 m apart (robots/README.md): a closed length of 1.65 m is
+    // 37.5 mm too long for the lift's start.
+    let m = refused_run("too-short", with(HYDRAULIC), |t| {
+        t.replace("closed_length_m=\"1.56\" stroke_m=\"1.00\"", "closed_length_m=\"1.65\" stroke_m=\"1.00\"")
+    });
+    assert!(m.contains("key `actuator.kind`") && m.contains("37.5 mm shorter than its closed length"), "{m}");
+    assert!(m.contains("at 0.00 deg") && m.contains("arm.urdf") && m.contains("1.65 ..= 2.65 m"), "{m}");
+    // At 90 deg they are 2.5179 m apart: a 0.9 m stroke ends at 2.46 m, 57.9 mm short.
+    let m = refused_run("too-long", with(HYDRAULIC), |t| t.replace("stroke_m=\"1.00\"", "stroke_m=\"0.90\""));
+    assert!(m.contains("key `actuator.kind`") && m.contains("57.9 mm longer than closed length + stroke"), "{m}");
+    assert!(m.contains("at 90.00 deg"), "{m}");
+}
+
+#[test]
+fn an_actuator_too_weak_or_too_slow_for_the_drive_is_named() {
+    // The default lift peaks at 90 deg / 12 s = 7.5 deg/s = 0.131 rad/s; a motor limited to
+    // 100 rad/s behind 1000:1 turns the hub at 0.1 rad/s at most.
+    let m =
+        refused_run("slow", with(SERVO), |t| t.replace("speed_limit_rad_s=\"314.16\"", "speed_limit_rad_s=\"100\""));
+    assert!(m.contains("key `drive.duration_s`") && m.contains("speed_limit_rad_s 100"), "{m}");
+    assert!(m.contains("up to 5.730 deg/s"), "{m}");
+    // Holding the arm and the 2-7/8 in string level takes 92 kN·m: 206 kN on the cylinder's
+    // 0.4465 m lever, more than 5 MPa on its 0.0254 m² cap side can give (127 kN).
+    let weak = HYDRAULIC.replace("supply_pressure_pa = 21e6", "supply_pressure_pa = 5e6").replace("23e6", "6e6");
+    let m = refused_run("weak", with(weak), same);
+    assert!(m.contains("key `actuator.supply_pressure_pa`") && m.contains("outside tank to supply"), "{m}");
+    // A motor of 50 N·m behind 1000:1 gives 50 kN·m at the hub.
+    let m =
+        refused_run("weak-servo", with(SERVO), |t| t.replace("torque_limit_n_m=\"160\"", "torque_limit_n_m=\"50\""));
+    assert!(m.contains("key `actuator.kind`") && m.contains("torque_limit_n_m"), "{m}");
+}

@@ -43,6 +43,123 @@ fn the_shipped_robots_load() {
     assert_eq!((robot.lift.effort_n_m, robot.lift.velocity_rad_s), (400000.0, 0.3));
 }
 
+/// The full-scale arm's cylinder and servo, as sized in robots/README.md ("Drives"): checked
+/// against what they must do, not against the numbers in the file.
+#[test]
+fn the_full_scale_arm_carries_a_cylinder_and_a_servo_that_can_lift_it() {
+    let robot = load_robot(&manifest().join("robots/pipe_arm.urdf")).unwrap();
+    let cylinder = robot.lift.cylinder.expect("<pipearm:cylinder> on joint lift");
+    let servo = robot.lift.servo.expect("<pipearm:servo> on joint lift");
+    // Over the lift (0..90 deg) the cylinder keeps a lever of 0.3 m at least, and over the
+    // joint's whole range it stays inside its stroke.
+    for i in 0..=900 {
+        let theta = (i as f64 / 10.0).to_radians();
+        let (_, arm) = cylinder.length_and_arm(theta);
+        assert!(arm >= 0.3, "moment arm {arm} m at {} deg", i as f64 / 10.0);
+    }
+    let (lo, hi) = robot.lift.limits_rad;
+    for i in 0..=1000 {
+        let (length, _) = cylinder.length_and_arm(lo + (hi - lo) * i as f64 / 1000.0);
+        let extension = length - cylinder.closed_length_m;
+        assert!(extension > 0.0 && extension < cylinder.stroke_m, "extension {extension} m of {}", cylinder.stroke_m);
+    }
+    // The base pin sits in the base's 1.2 m box (centred 0.6 m below the pivot).
+    let [bx, by] = cylinder.base_pin_m;
+    assert!(bx.abs() <= 0.6 && (-1.2..=0.0).contains(&by), "base pin {:?}", cylinder.base_pin_m);
+    // Gravity moment of the arm with the 4-1/2 in string (200 kg at the gripper, 9 m) held
+    // horizontal, summed by hand from the URDF: box 0.018125 m² x 7850 kg/m³ x 9 m at 4.5 m,
+    // hand 180 kg at 8.2 m, palm 96 kg and jaws 24 kg at 9 m.
+    let moment = 9.80665 * (0.018125 * 7850.0 * 9.0 * 4.5 + 180.0 * 8.2 + 120.0 * 9.0 + 200.2 * 9.0);
+    // A 21 MPa supply holds it with the cap side below supply, the rod side above tank, each
+    // with a fifth of the supply in hand: p1 A1 - p2 A2 = F, p1 + p2 = ps (tank at 0).
+    let force = moment / cylinder.length_and_arm(0.0).1;
+    let (a1, a2) = (cylinder.cap_area_m2(), cylinder.rod_area_m2());
+    let p1 = (force + a2 * 21e6) / (a1 + a2);
+    assert!(p1 < 0.8 * 21e6 && 21e6 - p1 > 0.2 * 21e6, "p1 {p1} Pa for {force} N");
+    // The servo lifts it with half as much again and turns the joint at its velocity limit.
+    assert!(servo.hub_torque_limit_n_m() >= 1.5 * moment, "{} N·m", servo.hub_torque_limit_n_m());
+    assert!(servo.hub_speed_limit_rad_s() >= robot.lift.velocity_rad_s, "{} rad/s", servo.hub_speed_limit_rad_s());
+}
+
+#[test]
+fn malformed_lift_machines_are_named() {
+    type Edit = Box<dyn Fn(String) -> String>;
+    let cylinder = "joint[lift].pipearm:cylinder";
+    let servo = "joint[lift].pipearm:servo";
+    let cases: Vec<(&str, Edit, Vec<String>)> = vec![
+        (
+            "negative-volume",
+            Box::new(|t: String| t.replace("cap_dead_volume_m3=\"1.65e-3\"", "cap_dead_volume_m3=\"-1.65e-3\"")),
+            vec![format!("{cylinder}@cap_dead_volume_m3"), "allowed > 0".into()],
+        ),
+        (
+            "zero-volume",
+            Box::new(|t: String| t.replace("rod_dead_volume_m3=\"1.45e-3\"", "rod_dead_volume_m3=\"0\"")),
+            vec![format!("{cylinder}@rod_dead_volume_m3"), "allowed > 0".into()],
+        ),
+        (
+            "rod-as-bore",
+            Box::new(|t: String| t.replace("rod_m=\"0.100\"", "rod_m=\"0.180\"")),
+            vec![format!("{cylinder}@rod_m"), "rod_m < bore_m".into()],
+        ),
+        (
+            "stroke-longer-than-closed",
+            Box::new(|t: String| t.replace("stroke_m=\"1.00\"", "stroke_m=\"1.60\"")),
+            vec![format!("{cylinder}@closed_length_m"), "closed_length_m > stroke_m".into()],
+        ),
+        (
+            "pin-of-three",
+            Box::new(|t: String| t.replace("base_pin_m=\"0.40 -0.50\"", "base_pin_m=\"0.40 -0.50 0\"")),
+            vec![format!("{cylinder}@base_pin_m"), "two numbers".into()],
+        ),
+        (
+            "cylinder-typo",
+            Box::new(|t: String| t.replace("bore_m=", "bore_mm=")),
+            vec![format!("{cylinder}@bore_mm"), "unknown attribute".into(), "bore_m".into()],
+        ),
+        (
+            "missing-stroke",
+            Box::new(|t: String| t.replace("stroke_m=\"1.00\"", "")),
+            vec![format!("{cylinder}@stroke_m"), "missing".into()],
+        ),
+        (
+            "no-damping",
+            Box::new(|t: String| t.replace("damping_n_m_s_per_rad=\"5.0e4\"", "damping_n_m_s_per_rad=\"-1\"")),
+            vec![format!("{servo}@damping_n_m_s_per_rad"), "allowed >= 0".into()],
+        ),
+        (
+            "zero-ratio",
+            Box::new(|t: String| t.replace("gear_ratio=\"1000\"", "gear_ratio=\"0\"")),
+            vec![format!("{servo}@gear_ratio"), "allowed > 0".into()],
+        ),
+        (
+            "nan-inertia",
+            Box::new(|t: String| t.replace("rotor_inertia_kg_m2=\"0.025\"", "rotor_inertia_kg_m2=\"NaN\"")),
+            vec![format!("{servo}@rotor_inertia_kg_m2"), "not a finite number".into()],
+        ),
+        (
+            "twice",
+            Box::new(|t: String| {
+                let a = t.find("<pipearm:servo ").unwrap();
+                let b = a + t[a..].find("/>").unwrap() + 2;
+                format!("{}{}{}", &t[..b], &t[a..b], &t[b..])
+            }),
+            vec![servo.into(), "given twice".into()],
+        ),
+        (
+            "unknown-element",
+            Box::new(|t: String| t.replace("<pipearm:servo ", "<pipearm:motor ")),
+            vec!["joint[lift]".into(), "<pipearm:motor>".into(), "<pipearm:servo>".into()],
+        ),
+    ];
+    for (tag, edit, needles) in cases {
+        let m = robot_error(tag, edit);
+        for needle in needles {
+            assert!(m.contains(&needle), "{tag}: `{needle}` missing from: {m}");
+        }
+    }
+}
+
 #[test]
 fn malformed_urdf_is_named() {
     type Edit = Box<dyn Fn(String) -> String>;

@@ -1,8 +1,19 @@
 //! URDF reading: urdf-rs for the standard elements, a second XML pass (roxmltree) for
-//! pipearm's flexible-link element, which urdf-rs silently drops.
+//! pipearm's elements, which urdf-rs silently drops: the flexible link's parameters, and the
+//! machines that can turn the lift joint (a hydraulic cylinder, a servo motor and gearbox;
+//! [`crate::actuator`]). Every attribute of a pipearm element is required; unknown ones are
+//! refused.
 //!
 //! ```xml
 //! <robot name="..." xmlns:pipearm="https://pipearm.dev/urdf/1">
+//!   <joint name="lift" type="revolute">
+//!     ...
+//!     <pipearm:cylinder base_pin_m="0.4 -0.5" arm_pin_m="2.0 -0.7" bore_m="0.18" rod_m="0.10"
+//!                       closed_length_m="1.56" stroke_m="1.0"
+//!                       cap_dead_volume_m3="1.65e-3" rod_dead_volume_m3="1.45e-3"/>
+//!     <pipearm:servo gear_ratio="1000" rotor_inertia_kg_m2="0.025" stiffness_n_m_per_rad="3e7"
+//!                    damping_n_m_s_per_rad="5e4" torque_limit_n_m="160" speed_limit_rad_s="314.16"/>
+//!   </joint>
 //!   <link name="arm" pipearm:flexible="true">
 //!     <pipearm:flexible elements="24" damping_ratios="0.01" hub_inertia_kg_m2="50">
 //!       <pipearm:segment length_m="9" youngs_modulus_pa="2.06e11" density_kg_m3="7850"
@@ -17,6 +28,7 @@ use std::path::Path;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 
 use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
+use crate::actuator::{Cylinder, ServoMachine};
 use crate::beam::{BeamModel, Material, SectionShape};
 
 /// Namespace of pipearm's URDF extensions.
@@ -30,7 +42,8 @@ pub fn load_robot(path: &Path) -> Result<Robot, RobotError> {
     let doc = roxmltree::Document::parse(&text).map_err(|e| parse(format!("not well-formed XML: {e}")))?;
     let ctx = Context { path };
     let arm = ctx.flexible_link(&doc)?;
-    let lift = ctx.lift_joint(&urdf, &arm.name)?;
+    let mut lift = ctx.lift_joint(&urdf, &arm.name)?;
+    (lift.0.cylinder, lift.0.servo) = ctx.lift_machines(&doc, &lift.0.name)?;
     let carried = ctx.carried_bodies(&urdf, &arm)?;
     let base_shapes = urdf
         .links
@@ -213,6 +226,133 @@ impl Context<'_> {
             servo: None,
         };
         Ok((lift, joint.parent.link.clone()))
+    }
+
+    /// The machines that can turn the lift joint: at most one `<pipearm:cylinder>` and one
+    /// `<pipearm:servo>` among the joint's children, no other pipearm element there.
+    fn lift_machines(
+        &self,
+        doc: &roxmltree::Document<'_>,
+        joint: &str,
+    ) -> Result<(Option<Cylinder>, Option<ServoMachine>), RobotError> {
+        let key = format!("joint[{joint}]");
+        let node =
+            doc.root_element().children().find(|n| n.has_tag_name("joint") && n.attribute("name") == Some(joint));
+        let (mut cylinder, mut servo) = (None, None);
+        let ours = node.iter().flat_map(|n| n.children()).filter(|c| c.tag_name().namespace() == Some(PIPEARM_NS));
+        for child in ours {
+            let name = child.tag_name().name();
+            let child_key = format!("{key}.pipearm:{name}");
+            match name {
+                "cylinder" if cylinder.is_none() => cylinder = Some(self.cylinder(&child, &child_key)?),
+                "servo" if servo.is_none() => servo = Some(self.servo(&child, &child_key)?),
+                "cylinder" | "servo" => return Err(self.invalid(child_key, "given twice: allowed one per joint")),
+                _ => {
+                    return Err(self.invalid(
+                        &key,
+                        format!("unexpected element <pipearm:{name}>: allowed <pipearm:cylinder>, <pipearm:servo>"),
+                    ));
+                }
+            }
+        }
+        Ok((cylinder, servo))
+    }
+
+    /// `<pipearm:cylinder>`: pins, bore and rod, lengths and dead volumes ([`Cylinder`]).
+    fn cylinder(&self, node: &roxmltree::Node<'_, '_>, key: &str) -> Result<Cylinder, RobotError> {
+        self.only_attributes(
+            node,
+            key,
+            &[
+                "base_pin_m",
+                "arm_pin_m",
+                "bore_m",
+                "rod_m",
+                "closed_length_m",
+                "stroke_m",
+                "cap_dead_volume_m3",
+                "rod_dead_volume_m3",
+            ],
+        )?;
+        let positive = |name| self.positive(node, key, name);
+        let cylinder = Cylinder {
+            base_pin_m: self.pin(node, key, "base_pin_m")?,
+            arm_pin_m: self.pin(node, key, "arm_pin_m")?,
+            bore_m: positive("bore_m")?,
+            rod_m: positive("rod_m")?,
+            closed_length_m: positive("closed_length_m")?,
+            stroke_m: positive("stroke_m")?,
+            cap_dead_volume_m3: positive("cap_dead_volume_m3")?,
+            rod_dead_volume_m3: positive("rod_dead_volume_m3")?,
+        };
+        let c = &cylinder;
+        if c.rod_m >= c.bore_m {
+            return Err(self.invalid(
+                format!("{key}@rod_m"),
+                format!("{} is not below the bore {}: allowed 0 < rod_m < bore_m", c.rod_m, c.bore_m),
+            ));
+        }
+        if c.closed_length_m <= c.stroke_m {
+            return Err(self.invalid(
+                format!("{key}@closed_length_m"),
+                format!(
+                    "{} does not exceed the stroke {}: a single-stage rod retracts into its barrel, allowed \
+                     closed_length_m > stroke_m",
+                    c.closed_length_m, c.stroke_m
+                ),
+            ));
+        }
+        if c.arm_pin_m == [0.0, 0.0] {
+            return Err(self.invalid(format!("{key}@arm_pin_m"), "at the pivot: the cylinder would have no lever"));
+        }
+        Ok(cylinder)
+    }
+
+    /// `<pipearm:servo>`: gearbox, rotor, drive train and the motor's limits ([`ServoMachine`]).
+    fn servo(&self, node: &roxmltree::Node<'_, '_>, key: &str) -> Result<ServoMachine, RobotError> {
+        self.only_attributes(
+            node,
+            key,
+            &[
+                "gear_ratio",
+                "rotor_inertia_kg_m2",
+                "stiffness_n_m_per_rad",
+                "damping_n_m_s_per_rad",
+                "torque_limit_n_m",
+                "speed_limit_rad_s",
+            ],
+        )?;
+        let positive = |name| self.positive(node, key, name);
+        let damping = self.number(node, key, "damping_n_m_s_per_rad")?;
+        if damping < 0.0 {
+            return Err(self.invalid(format!("{key}@damping_n_m_s_per_rad"), format!("{damping}: allowed >= 0")));
+        }
+        Ok(ServoMachine {
+            gear_ratio: positive("gear_ratio")?,
+            rotor_inertia_kg_m2: positive("rotor_inertia_kg_m2")?,
+            stiffness_n_m_per_rad: positive("stiffness_n_m_per_rad")?,
+            damping_n_m_s_per_rad: damping,
+            torque_limit_n_m: positive("torque_limit_n_m")?,
+            speed_limit_rad_s: positive("speed_limit_rad_s")?,
+        })
+    }
+
+    /// A required attribute that must be a finite number > 0.
+    fn positive(&self, node: &roxmltree::Node<'_, '_>, key: &str, name: &str) -> Result<f64, RobotError> {
+        let value = self.number(node, key, name)?;
+        if value > 0.0 {
+            Ok(value)
+        } else {
+            Err(self.invalid(format!("{key}@{name}"), format!("{value}: allowed > 0")))
+        }
+    }
+
+    /// A required attribute of two numbers "x y", m.
+    fn pin(&self, node: &roxmltree::Node<'_, '_>, key: &str, name: &str) -> Result<[f64; 2], RobotError> {
+        match *self.numbers(node, key, name)?.as_slice() {
+            [x, y] => Ok([x, y]),
+            _ => Err(self.invalid(format!("{key}@{name}"), "allowed two numbers \"x y\" (m, from the pivot)")),
+        }
     }
 
     /// Links hanging from the arm through fixed or prismatic joints, in the arm frame.
