@@ -141,7 +141,7 @@ impl Valve {
     /// √ rounded off near zero, module doc).
     pub fn land_flow_m3_s(&self, opening: f64, drop_pa: f64) -> f64 {
         let delta = 0.01 * self.rated_pressure_drop_pa;
-        self.flow_gain() * opening * drop_pa / (drop_pa * drop_pa + delta * delta).powf(0.25)
+        self.flow_gain() * opening * drop_pa / (drop_pa * drop_pa + delta * delta).sqrt().sqrt()
     }
 }
 

@@ -110,6 +110,15 @@ impl ActuatorPlant {
         }
     }
 
+    /// The own equation the controller's output enters and its coefficient there: the motor's
+    /// torque balance (1), or the spool's lag (1/τ_s).
+    pub fn command_row(&self) -> (usize, f64) {
+        match &self.actuator {
+            Actuator::Hydraulic(h) => (2, 1.0 / h.circuit.valve.spool_time_constant_s),
+            _ => (0, 1.0),
+        }
+    }
+
     /// Samples the controller if a sample is due at `t_s`, reading the state (θ, θ̇) of the hub
     /// and `x`, `v` of its own coordinates.
     pub fn sample_if_due(&mut self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) {

@@ -1,6 +1,6 @@
 //! The arm's equations of motion as a [`Dynamics`] system.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use nalgebra::{DMatrix, DVector};
 
@@ -76,6 +76,33 @@ pub struct ArmSystem<'a> {
     pub contacts: &'a [ArmContact],
     /// The prescribed hub by time, shared with the simulation's outputs.
     hub: &'a HubCache,
+    /// A free hub's buffers, reused by every evaluation within the step.
+    scratch: RefCell<FreeHubScratch>,
+}
+
+/// Buffers of a free hub's evaluations: q and q̇ split off the integrator's vectors, and the
+/// mass solve's intermediates (several evaluations a step; on a 3-mode arm an allocation costs
+/// more than the arithmetic it serves).
+#[derive(Debug, Default)]
+struct FreeHubScratch {
+    q: DVector<f64>,
+    qd: DVector<f64>,
+    coupling: DVector<f64>,
+    y: DVector<f64>,
+    w: DVector<f64>,
+}
+
+impl FreeHubScratch {
+    /// q and q̇ from the integrator's [θ, q, …] coordinates and rates.
+    fn split(&mut self, x: &DVector<f64>, v: &DVector<f64>, n: usize) {
+        for buffer in [&mut self.q, &mut self.qd, &mut self.coupling, &mut self.y, &mut self.w] {
+            if buffer.len() != n {
+                *buffer = DVector::zeros(n);
+            }
+        }
+        self.q.copy_from(&x.rows(1, n));
+        self.qd.copy_from(&v.rows(1, n));
+    }
 }
 
 /// A prescribed hub at the last time asked, with (sin, cos) of its angle: RK4 evaluates twice at
@@ -111,7 +138,7 @@ impl<'a> ArmSystem<'a> {
         contacts: &'a [ArmContact],
         hub: &'a HubCache,
     ) -> Self {
-        ArmSystem { arm, drive, load, contacts, hub }
+        ArmSystem { arm, drive, load, contacts, hub, scratch: RefCell::default() }
     }
 
     /// A free hub's state and q, q̇ from the integrator's coordinates [θ, q] (the hub's
@@ -122,8 +149,8 @@ impl<'a> ArmSystem<'a> {
         (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
     }
 
-    /// Adds the elastic generalized forces without the θ̈ term to `f` (allocation-free: it runs
-    /// several times a step):
+    /// Adds the elastic generalized forces without the θ̈ term and the contacts to `f`
+    /// (allocation-free: it runs several times a step):
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
     fn add_elastic_forces(
         &self,
@@ -154,18 +181,30 @@ impl<'a> ArmSystem<'a> {
         for i in 0..n {
             f[i] += w * w * moment[i] - g * s * axial[i] - g * c * transverse[i] + load[i];
         }
+    }
+
+    /// Adds the pad contacts' generalized forces: on q to `f_q`, and their moment about the pivot
+    /// to `f_theta` where the hub is free (each contact evaluated once).
+    fn add_contact_forces(
+        &self,
+        hub: &DriveState,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+        mut f_theta: Option<&mut f64>,
+        f_q: &mut [f64],
+    ) {
         for contact in self.contacts {
             let state = contact.state(hub, q, qd);
-            contact.add_direction(&state, state.force_n, f);
+            contact.add_direction(&state, state.force_n, f_q);
+            if let Some(f) = f_theta.as_deref_mut() {
+                *f += state.moment_n_m;
+            }
         }
     }
 
-    /// Hub generalized force without inertia: τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment.
-    fn hub_force(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, applied_n_m: f64) -> f64 {
-        self.hub_force_at(hub, hub.angle_rad.sin_cos(), q, qd, applied_n_m)
-    }
-
-    /// [`Self::hub_force`] with the hub angle's (sin, cos) given.
+    /// Hub generalized force without inertia, the hub angle's (sin, cos) given:
+    /// τ_applied + Q_θ − 2θ̇(a + Wq)ᵀq̇ + gravity moment (the contacts' moment in Q_θ if
+    /// `with_contacts`).
     fn hub_force_at(
         &self,
         hub: &DriveState,
@@ -173,11 +212,13 @@ impl<'a> ArmSystem<'a> {
         q: &DVector<f64>,
         qd: &DVector<f64>,
         applied_n_m: f64,
+        with_contacts: bool,
     ) -> f64 {
         let a = self.arm;
         let g = a.options.gravity_m_s2;
         let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd.as_slice()) + bilinear(&a.spin_mass, qd, q));
-        let contact: f64 = self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum();
+        let contact: f64 =
+            if with_contacts { self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum() } else { 0.0 };
         applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
     }
 
@@ -247,7 +288,7 @@ impl<'a> ArmSystem<'a> {
             HubDrive::Actuated(_) => f64::NAN,
             HubDrive::Prescribed(_) => {
                 let inertia = pivot_inertia * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
-                inertia - self.hub_force_at(hub, trig, q, qd, 0.0)
+                inertia - self.hub_force_at(hub, trig, q, qd, 0.0, true)
             }
         }
     }
@@ -330,13 +371,20 @@ impl ArmSystem<'_> {
     fn solve_free_hub_mass(&self, x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) {
         let a = self.arm;
         let n = a.elastic_dofs();
-        let q = x.rows(1, n).into_owned();
-        let coupling = self.coupling(&q);
-        let inverse = &a.mass_inverse;
-        let (y, w) = (inverse * rhs.rows(1, n), inverse * &coupling);
-        let theta_dd = (rhs[0] - coupling.dot(&y)) / (self.pivot_inertia(&q) - coupling.dot(&w));
+        let mut scratch = self.scratch.borrow_mut();
+        scratch.split(x, x, n);
+        let FreeHubScratch { q, coupling, y, w, .. } = &mut *scratch;
+        coupling.copy_from(&a.coupling);
+        add_product(coupling.as_mut_slice(), 1.0, &a.gyroscopic, q.as_slice());
+        y.fill(0.0);
+        add_product(y.as_mut_slice(), 1.0, &a.mass_inverse, &rhs.as_slice()[1..1 + n]);
+        w.fill(0.0);
+        add_product(w.as_mut_slice(), 1.0, &a.mass_inverse, coupling.as_slice());
+        let theta_dd = (rhs[0] - coupling.dot(y)) / (self.pivot_inertia(q) - coupling.dot(w));
         out[0] = theta_dd;
-        out.rows_mut(1, n).copy_from(&(y - theta_dd * w));
+        for i in 0..n {
+            out[1 + i] = y[i] - theta_dd * w[i];
+        }
         if let Some(plant) = self.drive.plant() {
             for i in 0..plant.dofs() {
                 out[1 + n + i] = rhs[1 + n + i] / plant.mass(i);
@@ -481,15 +529,22 @@ impl Dynamics for ArmSystem<'_> {
                 let f = f.as_mut_slice();
                 add_product(f, -hub.accel_rad_s2, &self.arm.gyroscopic, x.as_slice());
                 self.add_elastic_forces(&hub, trig, x, v, f);
+                self.add_contact_forces(&hub, x, v, None, f);
             }
             HubDrive::Free { .. } | HubDrive::Actuated(_) => {
-                let (hub, q, qd) = self.split_free_hub(x, v);
-                let n = q.len();
-                f[0] = self.hub_force(&hub, &q, &qd, self.applied_torque_n_m());
+                let n = self.arm.elastic_dofs();
+                let mut scratch = self.scratch.borrow_mut();
+                scratch.split(x, v, n);
+                let (q, qd) = (&scratch.q, &scratch.qd);
+                let hub = DriveState { angle_rad: x[0], rate_rad_s: v[0], accel_rad_s2: 0.0, jerk_rad_s3: 0.0 };
+                let trig = hub.angle_rad.sin_cos();
+                let mut hub_force = self.hub_force_at(&hub, trig, q, qd, self.applied_torque_n_m(), false);
                 let (elastic, own) = f.as_mut_slice()[1..].split_at_mut(n);
                 elastic.fill(0.0);
                 own.fill(0.0);
-                self.add_elastic_forces(&hub, hub.angle_rad.sin_cos(), &q, &qd, elastic);
+                self.add_elastic_forces(&hub, trig, q, qd, elastic);
+                self.add_contact_forces(&hub, q, qd, Some(&mut hub_force), elastic);
+                f[0] = hub_force;
                 self.add_actuator_forces(x.as_slice(), v.as_slice(), f.as_mut_slice());
             }
         }

@@ -229,31 +229,17 @@ impl ArmSimulation {
         }
     }
 
-    /// Samples an actuator's controller if a sample is due; the held output changes the
-    /// actuator's own forces, so their accelerations are brought up to date (their mass is
-    /// diagonal and apart from the arm's: exact, no solve).
+    /// Samples an actuator's controller if a sample is due; the held output enters one of the
+    /// actuator's own equations linearly, so the state's acceleration there is brought up to
+    /// date exactly (its mass is diagonal and apart from the arm's: no solve).
     fn sample_controller(&mut self) {
         let own = 1 + self.arm.elastic_dofs();
-        let Some(output) = self.drive.plant().map(|p| p.controller.output) else { return };
-        let forces = |sim: &Self| {
-            let mut f = vec![0.0; sim.state.x.len()];
-            let system = ArmSystem::new(&sim.arm, &sim.drive, &sim.load, &sim.contacts, &sim.hub);
-            system.add_actuator_forces(sim.state.x.as_slice(), sim.state.v.as_slice(), &mut f);
-            f
-        };
-        let before = forces(self);
-        if let HubDrive::Actuated(plant) = &mut self.drive {
-            let s = &self.state;
-            plant.sample_if_due(s.t, (s.x[0], s.v[0]), &s.x.as_slice()[own..], &s.v.as_slice()[own..]);
-            if plant.controller.output == output {
-                return;
-            }
-        }
-        let after = forces(self);
-        let Some(plant) = self.drive.plant() else { return };
-        for i in 0..plant.dofs() {
-            self.state.a[own + i] += (after[own + i] - before[own + i]) / plant.mass(i);
-        }
+        let HubDrive::Actuated(plant) = &mut self.drive else { return };
+        let s = &mut self.state;
+        let output = plant.controller.output;
+        plant.sample_if_due(s.t, (s.x[0], s.v[0]), &s.x.as_slice()[own..], &s.v.as_slice()[own..]);
+        let (row, gain) = plant.command_row();
+        s.a[own + row] += gain * (plant.controller.output - output) / plant.mass(row);
     }
 
     /// Advances by a step chosen by `control` from the integrator's local error estimate, at most

@@ -19,7 +19,8 @@ use serde::{Deserialize, Serialize};
 
 use super::{Check, ScenarioError};
 use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, Valve};
-use crate::arm::{ArmError, ArmSimulation, Fidelity};
+use crate::arm::{ArmError, ArmModel, ArmSimulation};
+use crate::beam::BeamModel;
 use crate::model::Model;
 use crate::robot::Robot;
 
@@ -204,19 +205,23 @@ impl Check<'_> {
             Actuator::Servo(servo) => self.servo_speed(model, servo)?,
             Actuator::Hydraulic(drive) => self.cylinder_on_path(model, &drive.cylinder)?,
         }
-        self.holding_at_start(model)?;
         self.closed_loop_at_start(model)
     }
 
-    /// The arm and its drive linearised at the start (the controller sampling continuously):
-    /// every pole must decay, and an explicit integrator's step must resolve the fastest.
+    /// The arm at the scene's fidelity, held by its drive at the start ([`Self::holding`]), and
+    /// linearised there (the controller sampling continuously): every pole must decay, and an
+    /// explicit integrator's step must resolve the fastest.
     fn closed_loop_at_start(&self, model: &Model) -> Result<(), ScenarioError> {
-        let fidelity = crate::select::fidelity(model).map_err(|e| self.invalid("payload", e.to_string()))?.fidelity;
-        let arm = model.arm_model(fidelity).map_err(|e| self.invalid("payload", e.to_string()))?;
-        let poles = ArmSimulation::new(arm, model.hub_drive(), model.integrator)
-            .and_then(|sim| sim.linear_poles())
-            .map_err(|e| self.invalid("actuator.kind", format!("the actuated start fails: {e}")))?;
-        let growing = poles.iter().copied().filter(|p| p.re > 1e-6 * p.norm().max(1.0)).max_by(|a, b| a.re.total_cmp(&b.re));
+        let invalid_arm = |e: &dyn std::fmt::Display| self.invalid("payload", e.to_string());
+        let beam = BeamModel::new(model.beam_spec().map_err(|e| invalid_arm(&e))?).map_err(|e| invalid_arm(&e))?;
+        let modes = beam.modes().map_err(|e| invalid_arm(&e))?;
+        let fidelity = crate::select::fidelity_for(model, &beam, &modes).map_err(|e| invalid_arm(&e))?.fidelity;
+        let arm = ArmModel::with_modes(beam, modes, fidelity, model.arm_options()).map_err(|e| invalid_arm(&e))?;
+        let sim = self.holding(model, ArmSimulation::new(arm, model.hub_drive(), model.integrator))?;
+        let poles =
+            sim.linear_poles().map_err(|e| self.invalid("actuator.kind", format!("the actuated start fails: {e}")))?;
+        let growing =
+            poles.iter().copied().filter(|p| p.re > 1e-6 * p.norm().max(1.0)).max_by(|a, b| a.re.total_cmp(&b.re));
         if let Some(p) = growing {
             return Err(self.invalid(
                 "actuator.controller.kp",
@@ -335,12 +340,12 @@ impl Check<'_> {
         Err(self.invalid("actuator.kind", problem))
     }
 
-    /// The actuator holds the rigid arm at rest at the drive's start (the arm waits on it before
-    /// the lift): a hydraulic drive within tank..supply pressure, a servo within its torque.
-    fn holding_at_start(&self, model: &Model) -> Result<(), ScenarioError> {
-        let arm = model.arm_model(Fidelity::Rigid).map_err(|e| self.invalid("payload", e.to_string()))?;
-        let why = match ArmSimulation::new(arm, model.hub_drive(), model.integrator) {
-            Ok(_) => return Ok(()),
+    /// The actuator holds the arm at rest at the drive's start (the arm waits on it before the
+    /// lift): a hydraulic drive within tank..supply pressure, a servo within its torque. `started`
+    /// is the simulation built at the start.
+    fn holding(&self, model: &Model, started: Result<ArmSimulation, ArmError>) -> Result<ArmSimulation, ScenarioError> {
+        let why = match started {
+            Ok(sim) => return Ok(sim),
             Err(ArmError::InvalidParameter { name, allowed, .. }) if name == "actuator" => allowed,
             Err(e) => return Err(self.invalid("actuator.kind", format!("the actuated start fails: {e}"))),
         };
