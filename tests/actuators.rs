@@ -252,3 +252,25 @@ fn actuator_work_equals_the_arm_energy_gained() {
     // And it tracked the reference: within a degree at the end.
     assert!((last.hub.angle_rad - 0.5).abs() < 0.0175, "ended at {} rad", last.hub.angle_rad);
 }
+
+#[test]
+fn seated_arm_presses_the_pad_with_the_hub_torque_over_its_lever() {
+    // servo_seated commands 0.3° past the stop and holds: at rest the hub's balance is
+    // τ_drive + M_gravity = F · lever, the lever the pad's station (its normal is square to the arm).
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/servo_seated.toml");
+    let model = pipearm::scenario::Scenario::load(&path).unwrap().model;
+    let (_, series) = pipearm::run::run(&model, None).unwrap();
+    let last = series.t_s.len() - 1;
+    let (force, torque, angle) =
+        (series.pad_force_n[0][last], series.drive_torque_n_m[last], series.hub_angle_rad[last]);
+    let first_moment = model.arm_model(Fidelity::Rigid).unwrap().first_moment_kg_m;
+    let gravity_moment = -model.physics.gravity_m_s2 * first_moment * angle.cos();
+    let lever = model.dampeners[0].station_m;
+    assert!(force > 1e4, "the arm must be seated: {force} N");
+    assert!(
+        rel(force * lever, torque + gravity_moment) < 0.01,
+        "F·lever {} against τ + M_g {}",
+        force * lever,
+        torque + gravity_moment
+    );
+}

@@ -272,10 +272,12 @@ mod tests {
             spool_time_constant_s: 0.01,
             leakage_m3_s_per_pa: 0.0,
         };
+        // The round-off δ = 1 % of the rated drop scales the flow by (1 + δ²/Δp²)^(−1/4).
         for drop in [1e6, 3.5e6, 1e7] {
             let exact = 1e-3 * 0.5 * (drop / 3.5e6f64).sqrt();
-            assert!((v.land_flow_m3_s(0.5, drop) / exact - 1.0).abs() < 1e-4);
-            assert!((v.land_flow_m3_s(0.5, -drop) + exact).abs() < 1e-4 * exact);
+            let tolerance = 0.3 * (0.01 * 3.5e6 / drop).powi(2);
+            assert!((v.land_flow_m3_s(0.5, drop) / exact - 1.0).abs() < tolerance);
+            assert!((v.land_flow_m3_s(0.5, -drop) + exact).abs() < tolerance * exact);
         }
     }
 }
