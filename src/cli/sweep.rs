@@ -5,12 +5,12 @@ use std::path::PathBuf;
 use anyhow::Result;
 use clap::Subcommand;
 
-/// `pipearm sweep`: its arguments, or `merge DIR`.
+/// `pipearm sweep`: its arguments, or `merge DIR`, or `chart DIR... --out FILE`.
 #[derive(clap::Args)]
 #[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
 pub struct SweepArgs {
     #[command(subcommand)]
-    merge: Option<SweepMerge>,
+    command: Option<SweepCommand>,
     /// Base scenario file.
     #[arg(required = true)]
     scenario: Option<PathBuf>,
@@ -32,18 +32,35 @@ pub struct SweepArgs {
 }
 
 #[derive(Subcommand)]
-enum SweepMerge {
+enum SweepCommand {
     /// Join a sharded sweep's case files into results.csv, results.json and force_vs_weight.svg.
     Merge {
         /// The sweep's output folder.
         dir: PathBuf,
     },
+    /// Draw finished sweeps on one chart of peak contact force against string weight.
+    Chart {
+        /// The sweeps' output folders (each with plan.json and cases/).
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// A label per folder, in the same order (default: the folder's name).
+        #[arg(long)]
+        label: Vec<String>,
+        /// The chart's title.
+        #[arg(long, default_value = "peak contact force against string weight")]
+        title: String,
+        /// The SVG file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 pub fn sweep(args: SweepArgs) -> Result<()> {
     use pipearm::sweep::{Progress, Request, Shard, merge};
-    if let Some(SweepMerge::Merge { dir }) = args.merge {
-        return print_merged(&merge(&dir)?);
+    match args.command {
+        Some(SweepCommand::Merge { dir }) => return print_merged(&merge(&dir)?),
+        Some(SweepCommand::Chart { dirs, label, title, out }) => return chart(dirs, label, &title, &out),
+        None => {}
     }
     let shard = match (args.shard, args.shards) {
         (Some(shard), _) => shard,
@@ -80,6 +97,28 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
             Ok(())
         }
     }
+}
+
+fn chart(dirs: Vec<PathBuf>, labels: Vec<String>, title: &str, out: &std::path::Path) -> Result<()> {
+    if !labels.is_empty() && labels.len() != dirs.len() {
+        anyhow::bail!(
+            "--label given {} times for {} folders: allowed one per folder, or none",
+            labels.len(),
+            dirs.len()
+        );
+    }
+    let labelled: Vec<(String, PathBuf)> = dirs
+        .into_iter()
+        .enumerate()
+        .map(|(i, dir)| {
+            let label =
+                labels.get(i).cloned().unwrap_or_else(|| dir.file_name().unwrap_or_default().to_string_lossy().into());
+            (label, dir)
+        })
+        .collect();
+    pipearm::sweep::compare(out, title, &labelled)?;
+    println!("chart of {} sweeps: {}", labelled.len(), out.display());
+    Ok(())
 }
 
 fn print_merged(merged: &pipearm::sweep::Merged) -> Result<()> {

@@ -1,6 +1,7 @@
 //! The sweep's chart: peak contact force (the largest over the contact pairs, N) against the
 //! weight of the string held (payload mass × standard gravity, N), one curve per combination of
-//! the varied keys outside `payload.` (SVG).
+//! the varied keys outside `payload.` (SVG). [`compare`] draws several sweeps' curves on the same
+//! axes, each under its own label (`pipearm sweep chart`).
 
 use std::path::Path;
 
@@ -45,22 +46,41 @@ fn weight_and_force(row: &Row) -> Option<(f64, f64)> {
     Some((weight, force))
 }
 
-/// Draws the chart to `path`.
+/// Draws the chart of one sweep to `path`.
 pub fn force_vs_weight(path: &Path, plan: &Plan, rows: &[Row]) -> Result<(), SweepError> {
+    // The scenario's name from the results, not the plan's path: shards may name the file differently.
+    let name = rows.first().and_then(|r| r.get("summary.scenario")).map(cell).unwrap_or_default();
+    draw(path, &format!("{name}: peak contact force against string weight"), &curves(plan, rows))
+}
+
+/// Draws the curves of several sweeps on the same axes to `path`, each sweep's curves labelled
+/// `label` (or `label: key=value, ...` when the sweep varies more than the payload).
+pub fn compare(path: &Path, caption: &str, sweeps: &[(String, Plan, Vec<Row>)]) -> Result<(), SweepError> {
+    let labelled: Vec<Curve> = sweeps
+        .iter()
+        .flat_map(|(label, plan, rows)| {
+            let own = curves(plan, rows);
+            let single = own.len() == 1;
+            own.into_iter()
+                .map(move |(l, points)| (if single { label.clone() } else { format!("{label}: {l}") }, points))
+        })
+        .collect();
+    draw(path, caption, &labelled)
+}
+
+/// Draws `curves` under `caption` to `path`: a polyline with dots per curve and a legend.
+fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> {
     let err = |e: &dyn std::fmt::Display| SweepError::Chart { path: path.into(), message: e.to_string() };
-    let curves = curves(plan, rows);
     let points = || curves.iter().flat_map(|(_, p)| p.iter().copied());
     let (x_lo, x_hi) = padded(points().map(|p| p.0), false);
     // Headroom above the highest point for the legend, a line per curve.
     let (_, y_hi) = padded(points().map(|p| p.1), true);
     let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
-    // The scenario's name from the results, not the plan's path: shards may name the file differently.
-    let name = rows.first().and_then(|r| r.get("summary.scenario")).map(cell).unwrap_or_default();
     crate::bench::register_font();
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(&e))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("{name}: peak contact force against string weight"), ("sans-serif", 18))
+        .caption(caption, ("sans-serif", 18))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(80)
@@ -102,4 +122,55 @@ fn padded(values: impl Iterator<Item = f64>, from_zero: bool) -> (f64, f64) {
     let lo = if from_zero { 0.0 } else { lo };
     let margin = 0.05 * (hi - lo).max(0.1 * hi.abs()).max(1e-9);
     (if from_zero { 0.0 } else { lo - margin }, hi + margin)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sweep over two strings whose peak forces are `forces`.
+    fn sweep(forces: [f64; 2]) -> (Plan, Vec<Row>) {
+        let vary = vec!["payload.size=2-7/8,4-1/2".parse().unwrap()];
+        let plan_json = r#"{"scenario": "s.toml", "vary": [], "cases": [
+            {"index": 0, "hash": "0", "values": {"payload.size": "2-7/8"}},
+            {"index": 1, "hash": "1", "values": {"payload.size": "4-1/2"}}]}"#;
+        let plan = Plan { vary, ..serde_json::from_str(plan_json).unwrap() };
+        let rows = [(121.0, forces[0]), (200.0, forces[1])]
+            .iter()
+            .map(|(kg, n)| {
+                let text = format!(r#"{{"summary": {{"payload_kg": {kg}, "pairs": [{{"peak_force_n": {n}}}]}}}}"#);
+                Row::read(text, &[]).unwrap()
+            })
+            .collect();
+        (plan, rows)
+    }
+
+    #[test]
+    fn three_sweeps_give_three_labelled_polylines_on_one_chart() {
+        let sweeps: Vec<(String, Plan, Vec<Row>)> =
+            [("ideal", [1.0e3, 2.0e3]), ("servo", [8e3, 9e3]), ("hydraulic", [7e3, 7.5e3])]
+                .into_iter()
+                .map(|(label, forces)| {
+                    let (plan, rows) = sweep(forces);
+                    (label.to_string(), plan, rows)
+                })
+                .collect();
+        let path = std::env::temp_dir().join(format!("pipearm-chart-compare-{}.svg", std::process::id()));
+        compare(&path, "drives", &sweeps).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_file(&path);
+        // A curve is a 2-px polyline of two points (its legend swatch is a 2-px polyline too).
+        let curves: Vec<&str> = svg
+            .lines()
+            .filter(|l| l.starts_with("<polyline") && l.contains(r#"stroke-width="2""#))
+            .filter(|l| l.matches(',').count() == 2)
+            .collect();
+        assert_eq!(curves.len(), 2 * 3, "{svg}");
+        let colours: std::collections::HashSet<&str> =
+            curves.iter().map(|l| l.split("stroke=\"").nth(1).unwrap().split('"').next().unwrap()).collect();
+        assert_eq!(colours.len(), 3, "{curves:?}");
+        for label in ["ideal", "servo", "hydraulic"] {
+            assert!(svg.contains(&format!("\n{label}\n")), "no legend entry {label}");
+        }
+    }
 }

@@ -6,7 +6,7 @@
 //! built and validated before anything is written) → the cases of one [`shard`] run and stored
 //! one file each ([`cases`], skipping those already current) → [`merge`] reads the plan and
 //! every case file ([`row`]: its scalars by dotted path) and writes the table ([`table`]) and
-//! the chart ([`chart`]). Results hold nothing thread- or time-dependent, so a sharded sweep merges
+//! the chart ([`chart`]). [`compare`] draws several finished sweeps on one chart. Results hold nothing thread- or time-dependent, so a sharded sweep merges
 //! to the same bytes as one run in one process.
 
 pub mod cases;
@@ -27,7 +27,7 @@ use crate::scene::SceneError;
 pub use cases::{Work, prepare, run_cases};
 pub use plan::{Case, Plan};
 pub use shard::Shard;
-pub use table::{Merged, merge};
+pub use table::{Merged, merge, read_results};
 pub use vary::Vary;
 
 /// The forms a `--vary` argument may take, for error messages.
@@ -123,6 +123,16 @@ pub fn sweep(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<
     })?;
     let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };
     Ok(Report { cases: plan.cases.len(), ran: work.todo.len(), current: work.current, merged })
+}
+
+/// Draws the finished sweeps in `dirs` (each a sweep's output folder, with its label) on one
+/// chart of peak contact force against string weight, at `out`.
+pub fn compare(out: &Path, caption: &str, dirs: &[(String, PathBuf)]) -> Result<(), SweepError> {
+    let sweeps = dirs
+        .iter()
+        .map(|(label, dir)| read_results(dir).map(|(plan, rows)| (label.clone(), plan, rows)))
+        .collect::<Result<Vec<_>, _>>()?;
+    chart::compare(out, caption, &sweeps)
 }
 
 impl From<ScenarioError> for SweepError {

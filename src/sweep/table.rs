@@ -34,8 +34,7 @@ pub struct Merged {
 /// Reads `DIR/plan.json` and every case file and writes the results; fails naming the cases
 /// not run yet.
 pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
-    let plan = read_plan(&dir.join("plan.json"))?;
-    let rows = read_rows(&plan, dir)?;
+    let (plan, rows) = read_results(dir)?;
     let merged = Merged {
         cases: rows.len(),
         csv: dir.join("results.csv"),
@@ -46,6 +45,14 @@ pub fn merge(dir: &Path) -> Result<Merged, SweepError> {
     write_atomic(&merged.csv, csv(&plan, &rows).as_bytes(), "merge")?;
     chart::force_vs_weight(&merged.chart, &plan, &rows)?;
     Ok(merged)
+}
+
+/// A sweep's plan and every case file read back, from its folder `dir`; fails naming the cases
+/// not run yet.
+pub fn read_results(dir: &Path) -> Result<(Plan, Vec<Row>), SweepError> {
+    let plan = read_plan(&dir.join("plan.json"))?;
+    let rows = read_rows(&plan, dir)?;
+    Ok((plan, rows))
 }
 
 fn read_rows(plan: &Plan, dir: &Path) -> Result<Vec<Row>, SweepError> {
