@@ -29,8 +29,8 @@
 //! rod meets the end cap: a stiff spring and damper ([`END_STOP_STIFFNESS_N_M`]).
 //!
 //! The controller's output is the spool command; its velocity feed-forward is the opening whose
-//! flow at half the supply-to-tank drop moves the rod at the reference's speed, times
-//! `velocity_feedforward` (1: the full estimate).
+//! flow through the metering-in land, at the chamber pressures it reads, moves the rod at the
+//! reference's speed, times `velocity_feedforward` (1: the full estimate).
 
 use serde::{Deserialize, Serialize};
 
@@ -228,11 +228,19 @@ impl HydraulicDrive {
         Ok((p, spool))
     }
 
-    /// The spool opening whose flow at half the supply-to-tank drop moves the rod at `rate_m_s`.
-    pub fn feedforward_opening(&self, rate_m_s: f64) -> f64 {
+    /// The spool opening whose flow through the metering-in land moves the rod at `rate_m_s`
+    /// with the chambers at `pressures_pa` (cap, rod): A₁ ṡ = K x √(p_s − p₁) extending,
+    /// A₂ |ṡ| = K |x| √(p_s − p₂) retracting — the controller reads the chamber pressures, so the
+    /// feed-forward follows the load (a drop fixed in advance would be off by the load's share).
+    pub fn feedforward_opening(&self, rate_m_s: f64, pressures_pa: [f64; 2]) -> f64 {
         let c = &self.circuit;
-        let area = if rate_m_s >= 0.0 { self.cylinder.cap_area_m2() } else { self.cylinder.rod_area_m2() };
-        let drop = 0.5 * (c.supply_pressure_pa - c.tank_pressure_pa);
+        let (area, chamber) = if rate_m_s >= 0.0 {
+            (self.cylinder.cap_area_m2(), pressures_pa[0])
+        } else {
+            (self.cylinder.rod_area_m2(), pressures_pa[1])
+        };
+        // Floored at a tenth of the supply: a chamber at supply pressure leaves no drop to meter.
+        let drop = (c.supply_pressure_pa - chamber).max(0.1 * c.supply_pressure_pa);
         area * rate_m_s / (c.valve.flow_gain() * drop.sqrt())
     }
 }

@@ -142,7 +142,7 @@ impl ActuatorPlant {
         let reference = self.reference.sample(t_s);
         match &self.actuator {
             Actuator::Servo(_) => (reference, (x[0], v[0]), self.controller.feedforward(&reference)),
-            Actuator::Hydraulic(h) => (reference, hub, hydraulic_feedforward(h, &self.controller, &reference)),
+            Actuator::Hydraulic(h) => (reference, hub, hydraulic_feedforward(h, &self.controller, &reference, v)),
             Actuator::Ideal => (reference, hub, 0.0),
         }
     }
@@ -243,9 +243,10 @@ fn hydraulic_rates(h: &HydraulicDrive, (length, rate): Stroke, command: f64, v: 
 }
 
 /// The spool command that feeds the reference forward (module doc of [`super::hydraulic`]).
-fn hydraulic_feedforward(h: &HydraulicDrive, controller: &Controller, reference: &DriveState) -> f64 {
+fn hydraulic_feedforward(h: &HydraulicDrive, controller: &Controller, reference: &DriveState, v: &[f64]) -> f64 {
     let (_, arm) = h.cylinder.length_and_arm(reference.angle_rad);
     let gains = &controller.gains;
-    gains.velocity_feedforward * h.feedforward_opening(arm * reference.rate_rad_s)
+    let pressures = [v[0], v[1]].map(|p| p * h.circuit.supply_pressure_pa);
+    gains.velocity_feedforward * h.feedforward_opening(arm * reference.rate_rad_s, pressures)
         + gains.acceleration_feedforward * reference.accel_rad_s2
 }

@@ -19,18 +19,20 @@ use serde::{Deserialize, Serialize};
 
 use super::{Check, ScenarioError};
 use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, Valve};
-use crate::arm::{ArmError, ArmModel, ArmSimulation};
+use nalgebra::Complex;
+
+use crate::arm::{ArmError, ArmModel, ArmSimulation, HubDrive};
 use crate::beam::BeamModel;
+use crate::drive::MotionProfile;
+use crate::integrate::IntegratorKind;
 use crate::model::Model;
 use crate::robot::Robot;
 
 /// Angles sampled along the drive's path when the cylinder's length is checked on it.
 const PATH_SAMPLES: usize = 2000;
 
-/// Fraction of an explicit integrator's limit on |λ|·dt a step may use: the limit is where its
-/// stability region crosses the imaginary axis, and a damped pole's |λ| meets the region's
-/// boundary a little earlier (RK4: 2.79 on the real axis against 2.83).
-const EXPLICIT_MARGIN: f64 = 0.95;
+/// Points along the drive's path, besides the start, where the closed loop is linearised at rest.
+const LOOP_CHECK_POINTS: usize = 4;
 
 /// The actuator as a scenario states it; the table left out: ideal.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -205,28 +207,49 @@ impl Check<'_> {
             Actuator::Servo(servo) => self.servo_speed(model, servo)?,
             Actuator::Hydraulic(drive) => self.cylinder_on_path(model, &drive.cylinder)?,
         }
-        self.closed_loop_at_start(model)
+        self.closed_loop_on_path(model)
     }
 
-    /// The arm at the scene's fidelity, held by its drive at the start ([`Self::holding`]), and
-    /// linearised there (the controller sampling continuously): every pole must decay, and an
-    /// explicit integrator's step must resolve the fastest.
-    fn closed_loop_at_start(&self, model: &Model) -> Result<(), ScenarioError> {
+    /// The arm at the scene's fidelity, held by its drive at the start ([`Self::holding`]) and at
+    /// rest at points along the drive's path, linearised there (the controller sampling
+    /// continuously): every pole must decay, and an explicit integrator's step must keep each
+    /// inside its stability region.
+    fn closed_loop_on_path(&self, model: &Model) -> Result<(), ScenarioError> {
         let invalid_arm = |e: &dyn std::fmt::Display| self.invalid("payload", e.to_string());
         let beam = BeamModel::new(model.beam_spec().map_err(|e| invalid_arm(&e))?).map_err(|e| invalid_arm(&e))?;
         let modes = beam.modes().map_err(|e| invalid_arm(&e))?;
         let fidelity = crate::select::fidelity_for(model, &beam, &modes).map_err(|e| invalid_arm(&e))?.fidelity;
         let arm = ArmModel::with_modes(beam, modes, fidelity, model.arm_options()).map_err(|e| invalid_arm(&e))?;
-        let sim = self.holding(model, ArmSimulation::new(arm, model.hub_drive(), model.integrator))?;
-        let poles =
-            sim.linear_poles().map_err(|e| self.invalid("actuator.kind", format!("the actuated start fails: {e}")))?;
+        let start = self.holding(model, ArmSimulation::new(arm.clone(), model.hub_drive(), model.integrator))?;
+        let mut poles = self.decaying_poles(&start, "at the start")?;
+        let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());
+        for k in 1..=LOOP_CHECK_POINTS {
+            let angle = lo + (hi - lo) * k as f64 / LOOP_CHECK_POINTS as f64;
+            let mut held = model.hub_drive();
+            if let HubDrive::Actuated(plant) = &mut held {
+                plant.reference = MotionProfile::hold(angle);
+            }
+            let at = format!("at rest at {:.1} deg on the drive's path", angle.to_degrees());
+            let sim = ArmSimulation::new(arm.clone(), held, model.integrator)
+                .map_err(|e| self.invalid("actuator.kind", format!("holding the arm {at} fails: {e}")))?;
+            poles.extend(self.decaying_poles(&sim, &at)?);
+        }
+        self.explicit_step_resolves(model, &poles)
+    }
+
+    /// The poles of `sim` linearised, or an error naming the growing one, `at` where.
+    fn decaying_poles(&self, sim: &ArmSimulation, at: &str) -> Result<Vec<Complex<f64>>, ScenarioError> {
+        let poles = sim
+            .linear_poles()
+            .map_err(|e| self.invalid("actuator.kind", format!("linearising the arm {at} fails: {e}")))?;
         let growing =
             poles.iter().copied().filter(|p| p.re > 1e-6 * p.norm().max(1.0)).max_by(|a, b| a.re.total_cmp(&b.re));
-        if let Some(p) = growing {
-            return Err(self.invalid(
+        match growing {
+            None => Ok(poles),
+            Some(p) => Err(self.invalid(
                 "actuator.controller.kp",
                 format!(
-                    "the closed loop linearised at the start has a growing mode: pole {:.3} {:+.3}i rad/s ({:.2} Hz, \
+                    "the closed loop linearised {at} has a growing mode: pole {:.3} {:+.3}i rad/s ({:.2} Hz, \
                      doubling every {:.2} s): allowed gains whose poles all decay (lower kp, add kd, or more valve \
                      leakage for a hydraulic drive: docs/drives.md)",
                     p.re,
@@ -234,26 +257,38 @@ impl Check<'_> {
                     p.im.abs() / std::f64::consts::TAU,
                     std::f64::consts::LN_2 / p.re
                 ),
-            ));
+            )),
+        }
+    }
+
+    /// An explicit integrator's step keeps every pole inside its stability region.
+    fn explicit_step_resolves(&self, model: &Model, poles: &[Complex<f64>]) -> Result<(), ScenarioError> {
+        let (integrator, step) = (&model.integrator, model.time.step_s);
+        if integrator.stability_limit_omega_dt().is_none() || poles.iter().all(|p| stable(integrator, *p, step)) {
+            return Ok(());
         }
         let fastest = poles.iter().map(|p| p.norm()).fold(0.0, f64::max);
-        let step = model.time.step_s;
-        if let Some(limit) = model.integrator.stability_limit_omega_dt()
-            && fastest * step > EXPLICIT_MARGIN * limit
-        {
-            return Err(self.invalid(
-                "time.step_s",
-                format!(
-                    "{} is explicit: its step must keep |λ|·dt below {limit:.3}, and the arm with its drive has a pole \
-                     of {fastest:.1} rad/s (|λ|·dt = {:.3}): allowed step_s <= {:.3e} s, or integrator.method = \
-                     \"generalized-alpha\" (stable at any step)",
-                    model.integrator.name(),
-                    fastest * step,
-                    EXPLICIT_MARGIN * limit / fastest
-                ),
-            ));
+        let implicit = "or integrator.method = \"generalized-alpha\" (stable at any step)";
+        // The longest stable step, by bisection (stability regions are intervals in h along a ray).
+        let (mut stable_h, mut unstable_h) = (0.0, step);
+        for _ in 0..60 {
+            let h = 0.5 * (stable_h + unstable_h);
+            if poles.iter().all(|p| stable(integrator, *p, h)) { stable_h = h } else { unstable_h = h }
         }
-        Ok(())
+        let remedy = if stable_h > 0.0 {
+            format!("allowed step_s <= {:.3e} s (0.95 of the limit), {implicit}", 0.95 * stable_h)
+        } else {
+            format!("no step is stable for it: use {implicit}")
+        };
+        Err(self.invalid(
+            "time.step_s",
+            format!(
+                "{} is explicit and the arm with its drive has poles its step {step} s does not keep in its stability \
+                 region (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
+                integrator.name(),
+                fastest * step
+            ),
+        ))
     }
 
     /// The motor's speed at the reference's peak rate within its limit.
@@ -368,6 +403,28 @@ impl Check<'_> {
             ),
         };
         Err(self.invalid(key, format!("{why}: allowed {remedy}")))
+    }
+}
+
+/// Whether `integrator` at step `h` keeps the mode of pole `pole` from growing: the amplification
+/// of the test equation y' = λy for the Runge–Kutta methods, of the damped oscillator with
+/// ω = |λ| and ζ = −Re λ / |λ| for symplectic Euler, the undamped limit for Newmark's explicit
+/// range; the implicit methods at any step.
+fn stable(integrator: &IntegratorKind, pole: Complex<f64>, h: f64) -> bool {
+    let z = pole * h;
+    let one = Complex::new(1.0, 0.0);
+    match integrator {
+        IntegratorKind::Rk4 => (one + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0).norm() <= 1.0 + 1e-12,
+        IntegratorKind::ExplicitEuler => (one + z).norm() <= 1.0 + 1e-12,
+        IntegratorKind::SymplecticEuler if pole.im == 0.0 => (one + z).norm() <= 1.0 + 1e-12,
+        IntegratorKind::SymplecticEuler => {
+            let (w, zeta) = (pole.norm(), -pole.re / pole.norm());
+            let (a, b, c, d) =
+                (1.0 - w * w * h * h, h * (1.0 - 2.0 * zeta * w * h), -w * w * h, 1.0 - 2.0 * zeta * w * h);
+            let eigen = nalgebra::Matrix2::new(a, b, c, d).complex_eigenvalues();
+            eigen.iter().all(|e| e.norm() <= 1.0 + 1e-12)
+        }
+        other => other.stability_limit_omega_dt().is_none_or(|limit| pole.norm() * h <= limit),
     }
 }
 
