@@ -1,6 +1,7 @@
 //! Cost of one time step: the arm alone at each fidelity, and the whole scene (rapier world,
 //! pads) with each contact method; and of the speed target's whole run: the default scene read,
-//! simulated for its 20 s and recorded, as `pipearm run` does it.
+//! simulated for its 20 s and recorded, as `pipearm run` does it; and the actuated scenes'
+//! whole runs against the same scenes with the ideal drive (`-- actuated_run`).
 //!
 //! `cargo bench --bench step` (one core: `taskset -c 0 cargo bench --bench step -- default_run`);
 //! the figures are quoted in docs/model.md, docs/accuracy.md and docs/performance.md.
@@ -106,5 +107,43 @@ fn default_run(c: &mut Criterion) {
     std::fs::remove_dir_all(&out).ok();
 }
 
-criterion_group!(benches, arm_step, scene_step, default_run);
+/// The actuated scenes against their ideal twins (the same file without its `[actuator]` table),
+/// each in-process from reading the scenario to the recording and summary written.
+fn actuated_run(c: &mut Criterion) {
+    use pipearm::record::{write_recording, write_summary};
+    use pipearm::run::{RunOptions, run_with};
+    use pipearm::scenario::ScenarioSpec;
+    let out = std::env::temp_dir().join(format!("pipearm-bench-actuated-{}", std::process::id()));
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let mut group = c.benchmark_group("actuated_run");
+    group.sample_size(20);
+    for name in ["hydraulic", "servo"] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"));
+        let load = |ideal: bool| {
+            if !ideal {
+                return Scenario::load(&path).unwrap();
+            }
+            let mut table: toml::Table = std::fs::read_to_string(&path).unwrap().parse().unwrap();
+            table.remove("actuator");
+            let spec: ScenarioSpec = table.try_into().unwrap();
+            Scenario::from_spec(&path, spec).unwrap()
+        };
+        for ideal in [false, true] {
+            let label = if ideal { format!("{name}, ideal drive") } else { name.to_string() };
+            group.bench_function(label, |b| {
+                b.iter(|| {
+                    let scenario = load(ideal);
+                    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+                    let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+                    write_recording(&out.join(format!("{name}.rrd")), &summary, &series, &pads).unwrap();
+                    write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
+                })
+            });
+        }
+    }
+    group.finish();
+    std::fs::remove_dir_all(&out).ok();
+}
+
+criterion_group!(benches, arm_step, scene_step, default_run, actuated_run);
 criterion_main!(benches);

@@ -1,8 +1,12 @@
-//! Time integrators for second-order systems M(t, x) ẍ = f(t, x, ẋ), behind one trait.
+//! Time integrators for second-order systems M(t, x) ẍ = f(t, x, ẋ), behind one trait. A
+//! system may end in a block of first-order states (an actuator's pressures and spool), carried
+//! as rates of coordinates whose positions are unused ([`Dynamics::first_order_dofs`]): every
+//! integrator then advances them with its velocity update, the implicit ones in the same Newton
+//! iteration.
 //!
 //! The implicit family ([`GeneralizedAlpha`]: Chung–Hulbert generalized-α, HHT-α and Newmark)
 //! is the default; the explicit ones ([`SymplecticEuler`], [`Rk4`], [`ExplicitEuler`]) exist to
-//! compare cost and to show where they fail (`../shared/reference/integrators.md`). Steps are
+//! compare cost and to show where they fail. Steps are
 //! chosen by the caller, fixed or controlled by the implicit methods' local error estimate
 //! ([`StepControl`]).
 
