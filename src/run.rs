@@ -332,13 +332,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     if options.capture_frames {
         series.layout = Some(scene.layout());
     }
-    let mut keeper = Keeper {
-        period_s: 1.0 / options.record_rate_hz,
-        frame_period_s: 1.0 / options.frame_rate_hz,
-        last_kept_s: f64::NEG_INFINITY,
-        last_frame_s: f64::NEG_INFINITY,
-        was_in_contact: false,
-    };
+    let mut keeper = Keeper::new(options, pads);
     let started = Instant::now();
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
@@ -399,19 +393,51 @@ struct Keeper {
     last_kept_s: f64,
     last_frame_s: f64,
     was_in_contact: bool,
+    /// Each pad's force at the last kept step, and its largest so far, N.
+    kept_force_n: Vec<f64>,
+    peak_force_n: Vec<f64>,
 }
 
+/// A contact step is kept when a pad's force has moved by more than this fraction of its peak so
+/// far since the last kept step: every step of an impact, the record rate while an arm rests on
+/// its pad (a seated arm would otherwise be kept at every step for as long as it rests there).
+const KEPT_FORCE_CHANGE: f64 = 0.005;
+
 impl Keeper {
+    fn new(options: &RunOptions, pads: usize) -> Self {
+        Keeper {
+            period_s: 1.0 / options.record_rate_hz,
+            frame_period_s: 1.0 / options.frame_rate_hz,
+            last_kept_s: f64::NEG_INFINITY,
+            last_frame_s: f64::NEG_INFINITY,
+            was_in_contact: false,
+            kept_force_n: vec![0.0; pads],
+            peak_force_n: vec![0.0; pads],
+        }
+    }
+
     fn keep(&mut self, scene: &Scene, series: &mut Series, capture: bool, last: bool) {
         let t = scene.arm.time_s();
-        let in_contact = scene.pads().any(|p| p.force_n > 0.0);
-        let contact = in_contact || self.was_in_contact || last;
+        let mut in_contact = false;
+        let mut changed = false;
+        for ((pad, kept), peak) in scene.pads().zip(&self.kept_force_n).zip(&mut self.peak_force_n) {
+            in_contact |= pad.force_n > 0.0;
+            *peak = peak.max(pad.force_n);
+            changed |= (pad.force_n - kept).abs() > KEPT_FORCE_CHANGE * *peak;
+        }
+        let contact = changed || in_contact != self.was_in_contact || last;
+        if in_contact && !self.was_in_contact {
+            // The step before a contact begins, too: a plot of the kept steps then rises from
+            // zero where the force does.
+            series.keep.last_mut().into_iter().for_each(|kept| *kept = true);
+        }
         let due = |since: f64, period: f64| t - since >= period * (1.0 - 1e-9);
         let keep = contact || due(self.last_kept_s, self.period_s);
         self.was_in_contact = in_contact;
         series.keep.push(keep);
         if keep {
             self.last_kept_s = t;
+            self.kept_force_n.iter_mut().zip(scene.pads()).for_each(|(kept, pad)| *kept = pad.force_n);
         }
         if capture && (contact || due(self.last_frame_s, self.frame_period_s)) {
             self.last_frame_s = t;

@@ -13,9 +13,9 @@
 //!     gap) is a support, not an impact, and adds nothing;
 //!   - an S-curve drive with jerk time t_j excites up to 1 / t_j; uniform and trapezoidal drives
 //!     jump in acceleration and their quasi-static load is carried by the modes already kept;
-//!   - a servo acts at the hub like the ideal drive and adds nothing; under a hydraulic cylinder,
-//!     which props the arm at its pin and leaves the light hub free, the peak force converges
-//!     slowly with the modes kept, and the reason says so (docs/scene.md).
+//!   - a servo acts at the hub like the ideal drive and adds nothing; under a hydraulic cylinder
+//!     an arm pressed between its pin and a pad converges slowly with the modes kept (no rule
+//!     for it yet), and the reason says so (docs/drives.md).
 //! - **fe** never by default: it is the reference.
 //!
 //! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
@@ -85,8 +85,8 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
     }
     if matches!(model.drive.actuator, crate::actuator::Actuator::Hydraulic(_)) {
         reasons.push(
-            "under the cylinder the light hub converges slowly with the modes kept: expect a few per cent on the \
-             peak force against modal(12) (docs/scene.md)"
+            "under a cylinder an arm pressed between its pin and a pad converges slowly with the modes kept: \
+             expect a few per cent on the peak force against modal(12) (docs/drives.md)"
                 .into(),
         );
     }

@@ -1,6 +1,6 @@
 //! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
-//! contact force and peak tip deflection, and no cheaper fidelity is (not under a hydraulic
-//! cylinder, where there is no converged reference yet: docs/scene.md).
+//! contact force and peak tip deflection, and no cheaper fidelity is (not yet under a hydraulic
+//! cylinder: docs/drives.md).
 
 use std::path::{Path, PathBuf};
 
@@ -33,9 +33,9 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
         if s.integrator.stability_limit_omega_dt().is_some() {
             s.integrator = pipearm::integrate::IntegratorKind::default();
         }
-        // Under a cylinder the light hub is free between pivot and pin and the peak force
-        // converges slowly with the modes (fe itself is in its free-hub failure region below
-        // 0.1 ρAL³): no converged reference to hold auto to (docs/scene.md).
+        // Under a cylinder an arm pressed between its pin and the pad converges slowly with the
+        // modes (modal(3) 2.9 % below fe on hydraulic.toml, modal(12) 0.2 %): auto has no rule
+        // for it yet, and its reason says so (docs/drives.md).
         if matches!(s.drive.actuator, pipearm::actuator::Actuator::Hydraulic(_)) {
             continue;
         }

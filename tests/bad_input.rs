@@ -211,6 +211,9 @@ fn actuator_tables_are_checked_naming_the_key() {
         same,
     );
     assert!(m.contains("key `actuator.valve.spool_time_constant_s`"), "{m}");
+    let leaky = "spool_time_constant_s = 0.015, leakage_m3_s_per_pa = -1e-11";
+    let m = refused_run("leakage", with(HYDRAULIC.replace("spool_time_constant_s = 0.015", leaky)), same);
+    assert!(m.contains("key `actuator.valve.leakage_m3_s_per_pa`") && m.contains(">= 0"), "{m}");
     let m = refused_run("kp", with(SERVO.replace("kp = 2e7", "kp = 0")), same);
     assert!(m.contains("key `actuator.controller.kp`") && m.contains("kp > 0"), "{m}");
     let m = refused_run("kd", with(SERVO.replace("kd = 1e6", "kd = -1e6")), same);

@@ -220,7 +220,7 @@ impl HydraulicDrive {
         let p = pressures(p1);
         if p.iter().chain([&spool]).any(|v| !v.is_finite()) || p.iter().any(|p| !(pt..=ps).contains(p)) {
             return Err(format!(
-                "holding the arm at the start takes a rod force of {force_n:.0} N, which needs chamber pressures \
+                "holding the arm takes a rod force of {force_n:.0} N, which needs chamber pressures \
                  {:.3e} and {:.3e} Pa outside tank to supply ({pt:.3e} to {ps:.3e} Pa)",
                 p[0], p[1]
             ));

@@ -185,14 +185,16 @@ impl ActuatorPlant {
                 }
                 if torque_n_m.abs() > s.machine.hub_torque_limit_n_m() {
                     return Err(format!(
-                        "holding the arm at the start takes {:.0} N·m at the hub, above the motor's {:.0} N·m",
+                        "holding the arm at {:.1} deg takes {:.0} N·m at the hub, above the motor's {:.0} N·m",
+                        angle_rad.to_degrees(),
                         torque_n_m.abs(),
                         s.machine.hub_torque_limit_n_m()
                     ));
                 }
             }
             Actuator::Hydraulic(h) => {
-                let (p, spool) = h.holding_state(load)?;
+                let (p, spool) =
+                    h.holding_state(load).map_err(|why| format!("at {:.1} deg, {why}", angle_rad.to_degrees()))?;
                 let ps = h.circuit.supply_pressure_pa;
                 (v[0], v[1], v[2]) = (p[0] / ps, p[1] / ps, spool);
                 self.controller.hold(spool);

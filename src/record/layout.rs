@@ -13,15 +13,43 @@ pub enum BlueprintLayout {
     Vertical(Vec<BlueprintLayout>),
 }
 
-/// The 3D scene left; contact force, tip deflection, drive torque and the event log one above the
-/// other on the right.
-pub fn run_layout() -> BlueprintLayout {
+/// What a run's actuator adds to the layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ActuatorViews {
+    /// An ideal drive: nothing.
+    None,
+    /// A servo: its tracking error.
+    Tracking,
+    /// A hydraulic drive: its tracking error and chamber pressures.
+    TrackingAndPressures,
+}
+
+/// The 3D scene left; contact force, tip deflection, drive torque, an actuator's tracking error
+/// and chamber pressures, and the event log one above the other on the right.
+pub fn run_layout(actuator: ActuatorViews) -> BlueprintLayout {
     let view = |class, name, origin| BlueprintLayout::View { class, name, origin };
-    let plots = BlueprintLayout::Vertical(vec![
+    let mut plots = vec![
         view("TimeSeries", "contact force (N)", "plots/contact_force"),
         view("TimeSeries", "tip deflection (m)", "plots/tip_deflection"),
         view("TimeSeries", "drive torque (N·m)", "plots/drive_torque"),
-        view("TextLog", "events", "events"),
-    ]);
-    BlueprintLayout::Horizontal(vec![view("3D", "scene", "world"), plots])
+    ];
+    if actuator != ActuatorViews::None {
+        plots.push(view("TimeSeries", "tracking error (°)", "plots/actuator/tracking_error_deg"));
+    }
+    if actuator == ActuatorViews::TrackingAndPressures {
+        plots.push(view("TimeSeries", "chamber pressures (Pa)", "plots/actuator/pressure"));
+    }
+    plots.push(view("TextLog", "events", "events"));
+    BlueprintLayout::Horizontal(vec![view("3D", "scene", "world"), BlueprintLayout::Vertical(plots)])
+}
+
+impl ActuatorViews {
+    /// The views for a run's actuator outputs.
+    pub fn of(outputs: &[crate::actuator::ActuatorOutputs]) -> Self {
+        match outputs.first() {
+            None => ActuatorViews::None,
+            Some(o) if o.pressures_pa.is_some() => ActuatorViews::TrackingAndPressures,
+            Some(_) => ActuatorViews::Tracking,
+        }
+    }
 }

@@ -127,7 +127,10 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     let file = std::fs::File::create(&tmp).map_err(io)?;
     let written = content::chunks(run)
         .map_err(|e| e.to_string())
-        .and_then(|chunks| write_rrd(file, run.ending.scenario(), &chunks));
+        .and_then(|chunks| {
+            let layout = layout::run_layout(layout::ActuatorViews::of(&run.series.actuator));
+            write_rrd(file, run.ending.scenario(), &chunks, &layout)
+        });
     if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
         return Err(RecordError::Rrd { path: shown, message });
@@ -135,13 +138,18 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     replace(&tmp, path).map_err(io)
 }
 
-/// The recording `recording_id` of `chunks`, then its blueprint, into `file`.
-fn write_rrd(file: std::fs::File, recording_id: &str, chunks: &[rerun::log::Chunk]) -> Result<(), String> {
+/// The recording `recording_id` of `chunks`, then its blueprint `layout`, into `file`.
+fn write_rrd(
+    file: std::fs::File,
+    recording_id: &str,
+    chunks: &[rerun::log::Chunk],
+    layout: &layout::BlueprintLayout,
+) -> Result<(), String> {
     let mut out = rrd::RrdFile::create(file, "pipearm", recording_id)?;
     for chunk in chunks {
         out.send_chunk(chunk)?;
     }
-    out.blueprint(&layout::run_layout())?;
+    out.blueprint(layout)?;
     out.finish()
 }
 
@@ -151,7 +159,7 @@ pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordErr
     let chunks = content::chunks(run).map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
     out.send_chunks(chunks);
-    stream::finish(out, &target)
+    stream::finish(out, &target, layout::ActuatorViews::of(&run.series.actuator))
 }
 
 /// Moves the complete file `tmp` to `path`. The old file is removed first: renamed over, ext4

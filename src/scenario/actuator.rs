@@ -31,6 +31,9 @@ use crate::robot::Robot;
 /// Angles sampled along the drive's path when the cylinder's length is checked on it.
 const PATH_SAMPLES: usize = 2000;
 
+/// Fraction of an explicit integrator's longest stable step a scene's step may use.
+const STEP_MARGIN: f64 = 0.95;
+
 /// Points along the drive's path, besides the start, where the closed loop is linearised at rest.
 const LOOP_CHECK_POINTS: usize = 4;
 
@@ -169,6 +172,13 @@ impl Check<'_> {
                 return Err(self.invalid(&format!("actuator.{key}"), format!("{value} is outside {name} > 0")));
             }
         }
+        let leakage = v.leakage_m3_s_per_pa;
+        if !(leakage.is_finite() && leakage >= 0.0) {
+            return Err(self.invalid(
+                "actuator.valve.leakage_m3_s_per_pa",
+                format!("{leakage} is outside leakage_m3_s_per_pa >= 0"),
+            ));
+        }
         Ok(())
     }
 
@@ -230,8 +240,7 @@ impl Check<'_> {
                 plant.reference = MotionProfile::hold(angle);
             }
             let at = format!("at rest at {:.1} deg on the drive's path", angle.to_degrees());
-            let sim = ArmSimulation::new(arm.clone(), held, model.integrator)
-                .map_err(|e| self.invalid("actuator.kind", format!("holding the arm {at} fails: {e}")))?;
+            let sim = self.holding(model, ArmSimulation::new(arm.clone(), held, model.integrator))?;
             poles.extend(self.decaying_poles(&sim, &at)?);
         }
         self.explicit_step_resolves(model, &poles)
@@ -261,22 +270,26 @@ impl Check<'_> {
         }
     }
 
-    /// An explicit integrator's step keeps every pole inside its stability region.
+    /// An explicit integrator's step keeps every pole inside its stability region, with a
+    /// margin: at most [`STEP_MARGIN`] of the longest step that does.
     fn explicit_step_resolves(&self, model: &Model, poles: &[Complex<f64>]) -> Result<(), ScenarioError> {
         let (integrator, step) = (&model.integrator, model.time.step_s);
-        if integrator.stability_limit_omega_dt().is_none() || poles.iter().all(|p| stable(integrator, *p, step)) {
+        if integrator.stability_limit_omega_dt().is_none() {
+            return Ok(());
+        }
+        // The longest stable step, by bisection (stability regions are intervals in h along a ray).
+        let (mut stable_h, mut unstable_h) = (0.0, 100.0 * step);
+        for _ in 0..80 {
+            let h = 0.5 * (stable_h + unstable_h);
+            if poles.iter().all(|p| stable(integrator, *p, h)) { stable_h = h } else { unstable_h = h }
+        }
+        if step <= STEP_MARGIN * stable_h {
             return Ok(());
         }
         let fastest = poles.iter().map(|p| p.norm()).fold(0.0, f64::max);
         let implicit = "or integrator.method = \"generalized-alpha\" (stable at any step)";
-        // The longest stable step, by bisection (stability regions are intervals in h along a ray).
-        let (mut stable_h, mut unstable_h) = (0.0, step);
-        for _ in 0..60 {
-            let h = 0.5 * (stable_h + unstable_h);
-            if poles.iter().all(|p| stable(integrator, *p, h)) { stable_h = h } else { unstable_h = h }
-        }
         let remedy = if stable_h > 0.0 {
-            format!("allowed step_s <= {:.3e} s (0.95 of the limit), {implicit}", 0.95 * stable_h)
+            format!("allowed step_s <= {:.3e} s ({STEP_MARGIN} of the longest stable step), {implicit}", STEP_MARGIN * stable_h)
         } else {
             format!("no step is stable for it: use {implicit}")
         };
@@ -284,7 +297,7 @@ impl Check<'_> {
             "time.step_s",
             format!(
                 "{} is explicit and the arm with its drive has poles its step {step} s does not keep in its stability \
-                 region (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
+                 region with a margin (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
                 integrator.name(),
                 fastest * step
             ),
