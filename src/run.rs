@@ -198,7 +198,8 @@ pub struct RunSummary {
     pub pairs: Vec<PairSummary>,
     /// The friction clamp's slip, if the string is held by one.
     pub string_slip: Option<SlipSummary>,
-    /// ω_max·dt of the highest mode the model keeps: an explicit integrator is stable only
+    /// ω_max·dt of the highest mode the model keeps (with an actuator: of the fastest pole of
+    /// the arm and its drive, linearised at the run's end): an explicit integrator is stable only
     /// below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
     pub highest_omega_dt: f64,
     /// The integrator's stability limit on ω·dt (`None`: unconditionally stable; 0: none).
@@ -446,6 +447,17 @@ impl Keeper {
     }
 }
 
+/// The fastest motion the model keeps, rad/s: its highest mode under a prescribed hub; the
+/// fastest pole of the arm and its drive linearised at the current state under an actuator (the
+/// clamped modes understate it once the hub is free).
+fn fastest_rad_s(scene: &Scene) -> f64 {
+    let clamped = scene.arm.arm.highest_omega_rad_s;
+    if scene.arm.drive.plant().is_none() {
+        return clamped;
+    }
+    scene.arm.linear_poles().map_or(clamped, |poles| poles.iter().map(|p| p.norm()).fold(clamped, f64::max))
+}
+
 /// Total mass × g × twice the reach (arm plus string): the most gravity could release, J.
 fn gravity_span_j(model: &Model, scene: &Scene) -> f64 {
     let string_m = model.payload.string().map_or(0.0, |s| s.pipe.length_m);
@@ -603,7 +615,7 @@ fn summarize(
         ),
         residual: residual(&deflection, model.drive_end_s()),
         pairs,
-        highest_omega_dt: arm.highest_omega_rad_s * model.time.step_s,
+        highest_omega_dt: fastest_rad_s(scene) * model.time.step_s,
         stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),
         sensors: series.sensors.iter().map(|s| SensorSummary::of(s, &series.t_s)).collect(),
         string_slip: scene.grip().map(|g| SlipSummary {

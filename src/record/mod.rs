@@ -125,12 +125,10 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     }
     let tmp = path.with_extension("rrd.tmp");
     let file = std::fs::File::create(&tmp).map_err(io)?;
-    let written = content::chunks(run)
-        .map_err(|e| e.to_string())
-        .and_then(|chunks| {
-            let layout = layout::run_layout(layout::ActuatorViews::of(&run.series.actuator));
-            write_rrd(file, run.ending.scenario(), &chunks, &layout)
-        });
+    let written = content::chunks(run).map_err(|e| e.to_string()).and_then(|chunks| {
+        let layout = layout::run_layout(layout::ActuatorViews::of(&run.series.actuator));
+        write_rrd(file, run.ending.scenario(), &chunks, &layout)
+    });
     if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
         return Err(RecordError::Rrd { path: shown, message });

@@ -289,7 +289,10 @@ impl Check<'_> {
         let fastest = poles.iter().map(|p| p.norm()).fold(0.0, f64::max);
         let implicit = "or integrator.method = \"generalized-alpha\" (stable at any step)";
         let remedy = if stable_h > 0.0 {
-            format!("allowed step_s <= {:.3e} s ({STEP_MARGIN} of the longest stable step), {implicit}", STEP_MARGIN * stable_h)
+            format!(
+                "allowed step_s <= {:.3e} s ({STEP_MARGIN} of the longest stable step), {implicit}",
+                STEP_MARGIN * stable_h
+            )
         } else {
             format!("no step is stable for it: use {implicit}")
         };
