@@ -13,9 +13,11 @@
 //!     gap) is a support, not an impact, and adds nothing;
 //!   - an S-curve drive with jerk time t_j excites up to 1 / t_j; uniform and trapezoidal drives
 //!     jump in acceleration and their quasi-static load is carried by the modes already kept;
-//!   - a servo acts at the hub like the ideal drive and adds nothing; under a hydraulic cylinder
-//!     an arm pressed between its pin and a pad converges slowly with the modes kept (no rule
-//!     for it yet), and the reason says so (docs/drives.md).
+//!   - under a servo or hydraulic drive the arm's frequencies are not its clamped ones: the
+//!     count is the fewest clamped modes with which the arm and its drive, linearised at rest at
+//!     the end of the path, reproduce within 2 % every coupled frequency in that band of a
+//!     12-mode model (a cylinder props the arm at its pin, and the clamped modes reproduce a
+//!     propped arm's frequencies only slowly: 9 modes on the shipped arm, docs/drives.md).
 //! - **fe** never by default: it is the reference.
 //!
 //! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
@@ -23,8 +25,9 @@
 use serde::Serialize;
 
 use crate::analysis::StiffnessClass;
-use crate::arm::Fidelity;
+use crate::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
 use crate::beam::{BeamError, BeamModel, ModalBasis};
+use crate::drive::MotionProfile;
 use crate::model::{Dampener, Model};
 
 /// The fidelity chosen and why.
@@ -65,6 +68,8 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
     let below = |f_max: f64| frequencies.iter().take_while(|f| **f <= f_max).filter(|f| **f > 0.0).count();
     let mut reasons = Vec::new();
     let mut n = 0;
+    // The highest frequency the scene excites, Hz.
+    let mut band_hz: f64 = 0.0;
     for pad in &model.dampeners {
         let station_shape = beam.point_rows(pad.station_m)[1].dot(&modes.shapes.column(0));
         let m_eff = 1.0 / station_shape.powi(2).max(1e-30);
@@ -74,6 +79,7 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
             continue;
         }
         let t_c = std::f64::consts::PI * (m_eff / stiffness).sqrt();
+        band_hz = band_hz.max(2.5 / t_c);
         let k = below(2.5 / t_c).max(1);
         reasons.push(format!(
             "impacts on {} last ≈ {:.0} ms and load modes up to {:.0} Hz: {k} mode(s)",
@@ -83,20 +89,24 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         ));
         n = n.max(k);
     }
-    if matches!(model.drive.actuator, crate::actuator::Actuator::Hydraulic(_)) {
-        reasons.push(
-            "under a cylinder an arm pressed between its pin and a pad converges slowly with the modes kept: \
-             expect a few per cent on the peak force against modal(12) (docs/drives.md)"
-                .into(),
-        );
-    }
     let motion = &model.drive.motion;
     let jerk_limited = matches!(motion.name(), "s-curve" | "hold");
     if motion.name() == "s-curve" {
         let t_j = motion.peak_accel_rad_s2() / motion.peak_jerk_rad_s3();
         let k = below(1.0 / t_j);
+        band_hz = band_hz.max(1.0 / t_j);
         reasons.push(format!("the S-curve's jerk time {t_j:.2} s excites up to {:.2} Hz: {k} mode(s)", 1.0 / t_j));
         n = n.max(k);
+    }
+    if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz) {
+        let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
+        reasons.push(format!(
+            "with its {} drive the arm's coupled frequencies up to {band_hz:.0} Hz are [{}] Hz: {k} clamped \
+             mode(s) reproduce them within 2 %",
+            model.drive.actuator.kind(),
+            listed.join(", ")
+        ));
+        n = k;
     }
     let fidelity = if n == 0 && class == StiffnessClass::Rigid && model.dampeners.is_empty() && jerk_limited {
         reasons.push("the arm is in the seed's rigid class".into());
@@ -108,6 +118,38 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         Fidelity::Modal { modes: n.max(1) }
     };
     Ok(Choice { fidelity, reason: reasons.join("; ") })
+}
+
+/// Clamped modes of the model against which an actuated arm's coupled frequencies are judged.
+const COUPLED_REFERENCE_MODES: usize = 12;
+
+/// The fewest clamped modes with which an arm and its actuator, linearised at rest at the end of
+/// the drive's path (where it meets its stops), reproduce within 2 % every coupled frequency up
+/// to `band_hz` of the same arm with [`COUPLED_REFERENCE_MODES`] modes; with those frequencies,
+/// Hz. `None` under an ideal drive (the clamped frequencies are the arm's), or if the actuated
+/// arm cannot be built (the scenario's checks say why).
+fn coupled_modes(model: &Model, beam: &BeamModel, modes: &ModalBasis, band_hz: f64) -> Option<(usize, Vec<f64>)> {
+    if model.drive.actuator == crate::actuator::Actuator::Ideal {
+        return None;
+    }
+    let end_rad = model.drive.motion.end_rad();
+    let frequencies = |k: usize| -> Option<Vec<f64>> {
+        let fidelity = Fidelity::Modal { modes: k };
+        let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
+        let mut drive = model.hub_drive();
+        if let HubDrive::Actuated(plant) = &mut drive {
+            plant.reference = MotionProfile::hold(end_rad);
+        }
+        let poles = ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()?;
+        let mut hz: Vec<f64> = poles.iter().filter(|p| p.im > 0.0).map(|p| p.im / std::f64::consts::TAU).collect();
+        hz.sort_by(f64::total_cmp);
+        Some(hz)
+    };
+    let cap = modes.len().min(COUPLED_REFERENCE_MODES);
+    let reference: Vec<f64> = frequencies(cap)?.into_iter().filter(|f| *f <= band_hz).collect();
+    let reproduces = |hz: &[f64]| reference.iter().all(|r| hz.iter().any(|f| (f - r).abs() <= 0.02 * r));
+    let k = (1..cap).find(|&k| frequencies(k).is_some_and(|hz| reproduces(&hz))).unwrap_or(cap);
+    Some((k, reference))
 }
 
 /// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes
