@@ -98,7 +98,7 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         reasons.push(format!("the S-curve's jerk time {t_j:.2} s excites up to {:.2} Hz: {k} mode(s)", 1.0 / t_j));
         n = n.max(k);
     }
-    if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz) {
+    if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz).filter(|_| band_hz > 0.0) {
         let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
         reasons.push(format!(
             "with its {} drive the arm's coupled frequencies up to {band_hz:.0} Hz are [{}] Hz: {k} clamped \
@@ -147,7 +147,12 @@ fn coupled_modes(model: &Model, beam: &BeamModel, modes: &ModalBasis, band_hz: f
     };
     let cap = modes.len().min(COUPLED_REFERENCE_MODES);
     let reference: Vec<f64> = frequencies(cap)?.into_iter().filter(|f| *f <= band_hz).collect();
-    let reproduces = |hz: &[f64]| reference.iter().all(|r| hz.iter().any(|f| (f - r).abs() <= 0.02 * r));
+    // Each reference frequency matched, and as many in the band as the reference has (one model
+    // frequency must not stand for two).
+    let reproduces = |hz: &[f64]| {
+        reference.iter().all(|r| hz.iter().any(|f| (f - r).abs() <= 0.02 * r))
+            && hz.iter().filter(|f| **f <= 1.02 * band_hz).count() >= reference.len()
+    };
     let k = (1..cap).find(|&k| frequencies(k).is_some_and(|hz| reproduces(&hz))).unwrap_or(cap);
     Some((k, reference))
 }
