@@ -78,6 +78,17 @@ impl Model {
         }
     }
 
+    /// The hub drive held at rest at `angle_rad`: an actuator's reference replaced by a hold
+    /// there (where a linear analysis looks at the arm and its drive); an ideal drive held there.
+    pub fn hub_drive_held_at(&self, angle_rad: f64) -> HubDrive {
+        let mut drive = self.hub_drive();
+        match &mut drive {
+            HubDrive::Actuated(plant) => plant.reference = MotionProfile::hold(angle_rad),
+            other => *other = HubDrive::Prescribed(MotionProfile::hold(angle_rad)),
+        }
+        drive
+    }
+
     /// Time the drive ends, s.
     pub fn drive_end_s(&self) -> f64 {
         self.drive.motion.duration_s()

@@ -608,7 +608,6 @@ fn summarize(
         actuator: ActuatorSummary::of(
             model.drive.actuator.kind(),
             &model.drive.motion,
-            &series.t_s,
             &series.hub_angle_rad,
             &series.drive_torque_n_m,
             &series.actuator,

@@ -25,9 +25,8 @@
 use serde::Serialize;
 
 use crate::analysis::StiffnessClass;
-use crate::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
+use crate::arm::{ArmModel, ArmSimulation, Fidelity};
 use crate::beam::{BeamError, BeamModel, ModalBasis};
-use crate::drive::MotionProfile;
 use crate::model::{Dampener, Model};
 
 /// The fidelity chosen and why.
@@ -136,10 +135,7 @@ fn coupled_modes(model: &Model, beam: &BeamModel, modes: &ModalBasis, band_hz: f
     let frequencies = |k: usize| -> Option<Vec<f64>> {
         let fidelity = Fidelity::Modal { modes: k };
         let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
-        let mut drive = model.hub_drive();
-        if let HubDrive::Actuated(plant) = &mut drive {
-            plant.reference = MotionProfile::hold(end_rad);
-        }
+        let drive = model.hub_drive_held_at(end_rad);
         let poles = ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()?;
         let mut hz: Vec<f64> = poles.iter().filter(|p| p.im > 0.0).map(|p| p.im / std::f64::consts::TAU).collect();
         hz.sort_by(f64::total_cmp);

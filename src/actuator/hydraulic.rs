@@ -74,11 +74,17 @@ impl Cylinder {
         std::f64::consts::FRAC_PI_4 * (self.bore_m.powi(2) - self.rod_m.powi(2))
     }
 
-    /// Pin-to-pin length s (m) and moment arm ds/dθ (m/rad) at hub angle `angle_rad`.
-    pub fn length_and_arm(&self, angle_rad: f64) -> (f64, f64) {
+    /// The arm pin from the pivot in the base frame at hub angle `angle_rad` (the arm
+    /// undeformed), m.
+    pub fn arm_pin_at_m(&self, angle_rad: f64) -> [f64; 2] {
         let (s, c) = angle_rad.sin_cos();
         let [ax, ay] = self.arm_pin_m;
-        let pin = [c * ax - s * ay, s * ax + c * ay];
+        [c * ax - s * ay, s * ax + c * ay]
+    }
+
+    /// Pin-to-pin length s (m) and moment arm ds/dθ (m/rad) at hub angle `angle_rad`.
+    pub fn length_and_arm(&self, angle_rad: f64) -> (f64, f64) {
+        let pin = self.arm_pin_at_m(angle_rad);
         let d = [pin[0] - self.base_pin_m[0], pin[1] - self.base_pin_m[1]];
         let length = d[0].hypot(d[1]);
         // d/dθ of the pin is (−pin_y, pin_x).

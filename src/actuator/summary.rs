@@ -26,30 +26,26 @@ pub struct ActuatorSummary {
 }
 
 impl ActuatorSummary {
-    /// The summary of a run of `kind` tracking `reference`, from its times `t_s`, hub angles,
-    /// hub torques and (for a servo or hydraulic drive) the actuator's outputs per step.
+    /// The summary of a run of `kind` tracking `reference`, from its hub angles and torques and
+    /// (for a servo or hydraulic drive) the actuator's outputs per step. An ideal hub follows its
+    /// reference exactly: no outputs, no tracking error.
     pub fn of(
         kind: &str,
         reference: &MotionProfile,
-        t_s: &[f64],
         hub_angle_rad: &[f64],
         hub_torque_n_m: &[f64],
         outputs: &[ActuatorOutputs],
     ) -> Self {
-        let largest = |values: &mut dyn Iterator<Item = f64>| values.fold(0.0_f64, |a, b| a.max(b.abs()));
-        let forces: Vec<f64> = outputs.iter().filter_map(|o| o.rod_force_n).collect();
-        let pressures: Vec<f64> = outputs.iter().filter_map(|o| o.pressures_pa).flatten().collect();
-        let tracking = t_s.iter().zip(hub_angle_rad).map(|(t, a)| reference.sample(*t).angle_rad - a);
-        let travel = reference.end_rad() - reference.start_rad();
-        let direction = if travel < 0.0 { -1.0 } else { 1.0 };
+        let direction = if reference.end_rad() < reference.start_rad() { -1.0 } else { 1.0 };
         let beyond =
             hub_angle_rad.iter().map(|a| direction * (a - reference.end_rad())).fold(f64::NEG_INFINITY, f64::max);
+        let tracking = outputs.iter().map(|o| o.tracking_error_rad.abs()).fold(0.0, f64::max);
         ActuatorSummary {
             kind: kind.into(),
-            peak_torque_n_m: largest(&mut hub_torque_n_m.iter().copied()),
-            peak_force_n: (!forces.is_empty()).then(|| largest(&mut forces.iter().copied())),
-            peak_pressure_pa: (!pressures.is_empty()).then(|| pressures.iter().copied().fold(f64::MIN, f64::max)),
-            max_tracking_error_deg: largest(&mut tracking.into_iter()).to_degrees(),
+            peak_torque_n_m: hub_torque_n_m.iter().map(|t| t.abs()).fold(0.0, f64::max),
+            peak_force_n: outputs.iter().filter_map(|o| o.rod_force_n).map(f64::abs).reduce(f64::max),
+            peak_pressure_pa: outputs.iter().filter_map(|o| o.pressures_pa).flatten().reduce(f64::max),
+            max_tracking_error_deg: tracking.to_degrees(),
             overtravel_deg: if beyond.is_finite() { beyond.to_degrees() } else { 0.0 },
         }
     }

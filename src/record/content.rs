@@ -258,9 +258,7 @@ impl Writer<'_> {
         let strips: Vec<Vec<[f32; 3]>> = frames
             .iter()
             .flat_map(|f| {
-                let (s, co) = f.hub_angle_rad.sin_cos();
-                let [ax, ay] = c.arm_pin_m;
-                let (base, pin) = (c.base_pin_m, [co * ax - s * ay, s * ax + co * ay]);
+                let (base, pin) = (c.base_pin_m, c.arm_pin_at_m(f.hub_angle_rad));
                 let length = (pin[0] - base[0]).hypot(pin[1] - base[1]);
                 let along = |from: [f64; 2], to: [f64; 2], d: f64| {
                     [from[0] + d / length * (to[0] - from[0]), from[1] + d / length * (to[1] - from[1])]

@@ -21,9 +21,8 @@ use super::{Check, ScenarioError};
 use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, Valve};
 use nalgebra::Complex;
 
-use crate::arm::{ArmError, ArmModel, ArmSimulation, HubDrive};
+use crate::arm::{ArmError, ArmModel, ArmSimulation};
 use crate::beam::BeamModel;
-use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
 use crate::model::Model;
 use crate::robot::Robot;
@@ -235,10 +234,7 @@ impl Check<'_> {
         let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());
         for k in 1..=LOOP_CHECK_POINTS {
             let angle = lo + (hi - lo) * k as f64 / LOOP_CHECK_POINTS as f64;
-            let mut held = model.hub_drive();
-            if let HubDrive::Actuated(plant) = &mut held {
-                plant.reference = MotionProfile::hold(angle);
-            }
+            let held = model.hub_drive_held_at(angle);
             let at = format!("at rest at {:.1} deg on the drive's path", angle.to_degrees());
             let sim = self.holding(model, ArmSimulation::new(arm.clone(), held, model.integrator))?;
             poles.extend(self.decaying_poles(&sim, &at)?);
