@@ -108,6 +108,15 @@ enum Command {
     /// it): per-case results, a table and a chart of peak contact force against string weight
     /// (docs/sweeps.md). `pipearm sweep merge DIR` joins the shards.
     Sweep(cli::sweep::SweepArgs),
+    /// Run a scenario over spread keys (pad gap, stiffness, damping, lift time, ...) drawn from
+    /// their distributions, per string size: the percentiles of the peak force and residual
+    /// amplitude, a chart with the p5-p95 band, and the sensitivity ranking (docs/envelope.md).
+    /// `pipearm envelope merge DIR` joins the shards.
+    Envelope(cli::envelope::EnvelopeArgs),
+    /// Find the values of scenario keys (lift time, acceleration, ...) that minimise an
+    /// objective while every limit holds, nominally or at the envelope's p95; or, with --table,
+    /// the largest start/stop acceleration per drive profile (docs/envelope.md).
+    Design(cli::design::DesignArgs),
     /// Run a scenario and set it against measured signals (docs/measurements.md): print a table
     /// per signal and write <out>/<name>.compare.json.
     Compare {
@@ -230,6 +239,8 @@ fn main() -> Result<()> {
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
         Command::Sweep(args) => cli::sweep::sweep(args),
+        Command::Envelope(args) => cli::envelope::envelope(args),
+        Command::Design(args) => cli::design::design_command(args),
         Command::Fit { scenario, measured, params, model, step, shift, out } => {
             let settings = pipearm::fit::RunSettings { fidelity: model, step_s: step };
             cli::measured::fit_command(&scenario, &measured, &params, (settings, shift), &out)

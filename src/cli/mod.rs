@@ -1,4 +1,6 @@
 //! The CLI's longer commands, each in its own file (the binary's; the library has none of this).
 
+pub mod design;
+pub mod envelope;
 pub mod measured;
 pub mod sweep;

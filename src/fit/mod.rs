@@ -28,7 +28,7 @@ use crate::robot::Robot;
 use crate::run::{RunSummary, Series, run};
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use crate::scene::SceneError;
-use crate::sweep::plan::set_key;
+use crate::sweep::plan::{explicit_damping_ratios, get_number, set_key};
 
 /// Errors of a fit; each names what it concerns.
 #[derive(Debug, thiserror::Error)]
@@ -144,10 +144,8 @@ impl Problem {
         })?;
         // The damping ratios live in the URDF unless the scenario overrides them: make the
         // override explicit, so that its entries can be set.
-        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) && scenario.spec.arm.damping_ratios.is_none() {
-            let ratios = toml::Value::try_from(&scenario.model.robot.arm.damping_ratios).expect("floats");
-            let arm = toml::Value::Table([("damping_ratios".to_string(), ratios)].into_iter().collect());
-            set_key(&mut document, "arm", arm).map_err(|message| FitError::Key { key: "arm".into(), message })?;
+        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) {
+            explicit_damping_ratios(&mut document, &scenario.model.robot);
         }
         let parameters = keys
             .iter()
@@ -234,23 +232,6 @@ fn relative_path(from: &Path, target: &Path) -> PathBuf {
     let mut path: PathBuf = from[common..].iter().map(|_| "..").collect();
     path.extend(&to[common..]);
     path
-}
-
-/// The number at dotted `key` of a TOML document (array entries by index).
-fn get_number(document: &toml::Value, key: &str) -> Option<f64> {
-    let mut node = document;
-    for segment in key.split('.') {
-        node = match node {
-            toml::Value::Table(table) => table.get(segment)?,
-            toml::Value::Array(items) => items.get(segment.parse::<usize>().ok()?)?,
-            _ => return None,
-        };
-    }
-    match node {
-        toml::Value::Float(x) => Some(*x),
-        toml::Value::Integer(i) => Some(*i as f64),
-        _ => None,
-    }
 }
 
 /// A fitted parameter.

@@ -54,15 +54,35 @@ impl Plan {
     /// another, each reading its robot, was a fifth of the whole command and held its parallel
     /// efficiency under 80 % (docs/sweeps.md).
     pub fn build(path: &Path, vary: Vec<Vary>) -> Result<(Plan, Vec<Scenario>), SweepError> {
-        let base = read_document(path)?;
         if let Some(key) = duplicate_key(&vary) {
             return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
         }
+        let rows = product(&vary);
+        Self::build_cases(path, vary, rows)
+    }
+
+    /// Builds and validates the cases `rows` (each the value of every key of `vary`, in its
+    /// order) over the scenario file at `path`, as [`Plan::build`] does for a product. An
+    /// envelope's cases are samples, not a product: its `vary` names the keys and lists the
+    /// values of the grouping key only.
+    pub fn build_cases(
+        path: &Path,
+        vary: Vec<Vary>,
+        rows: Vec<Vec<(String, toml::Value)>>,
+    ) -> Result<(Plan, Vec<Scenario>), SweepError> {
+        let mut base = read_document(path)?;
         let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
+        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) {
+            let spec: ScenarioSpec = base
+                .clone()
+                .try_into()
+                .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
+            explicit_damping_ratios(&mut base, &Scenario::load_robot(path, &spec)?);
+        }
         // Each robot file once: the robot, and the file's bytes for the cases' hashes.
         let mut robots: HashMap<PathBuf, (Robot, Vec<u8>)> = HashMap::new();
         let mut specs = Vec::new();
-        for (index, values) in product(&vary).into_iter().enumerate() {
+        for (index, values) in rows.into_iter().enumerate() {
             let case = Case { index, hash: String::new(), values: values.iter().cloned().collect() };
             let spec = case_spec(path, &base, &values, &case, &keys)?;
             let robot_path = Scenario::robot_path(path, &spec);
@@ -96,7 +116,8 @@ impl Plan {
     }
 }
 
-fn read_document(path: &Path) -> Result<toml::Value, ScenarioError> {
+/// The scenario file at `path` as a TOML document.
+pub fn read_document(path: &Path) -> Result<toml::Value, ScenarioError> {
     let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
     text.parse::<toml::Table>()
         .map(toml::Value::Table)
@@ -129,7 +150,7 @@ fn case_error(case: &Case, keys: &[&str], error: ScenarioError) -> SweepError {
 /// The base document with `values` set in the order varied (a key may lie inside an earlier
 /// one's table), as `case`'s scenario spec: fails on a varied key that leads nowhere, or on a
 /// spec that does not parse (naming the case).
-fn case_spec(
+pub(crate) fn case_spec(
     path: &Path,
     base: &toml::Value,
     values: &[(String, toml::Value)],
@@ -201,6 +222,35 @@ fn array_index(len: usize, segment: &str, at: &str) -> Result<usize, String> {
         Ok(i) if i < len => Ok(i),
         Ok(i) => Err(format!("index {i} is outside the array `{at}` (allowed 0..={})", len as i64 - 1)),
         Err(_) => Err(format!("`{at}` is an array: allowed an index 0..={}, not `{segment}`", len as i64 - 1)),
+    }
+}
+
+/// The number at dotted `key` of a TOML document (array entries by index).
+pub fn get_number(document: &toml::Value, key: &str) -> Option<f64> {
+    let mut node = document;
+    for segment in key.split('.') {
+        node = match node {
+            toml::Value::Table(table) => table.get(segment)?,
+            toml::Value::Array(items) => items.get(segment.parse::<usize>().ok()?)?,
+            _ => return None,
+        };
+    }
+    match node {
+        toml::Value::Float(x) => Some(*x),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+/// Writes the robot's modal damping ratios into `document` as `arm.damping_ratios` unless the
+/// scenario overrides them already: they live in the URDF, and a key such as
+/// `arm.damping_ratios.0` can only be set once the override is explicit.
+pub fn explicit_damping_ratios(document: &mut toml::Value, robot: &Robot) {
+    let toml::Value::Table(top) = document else { return };
+    let arm = top.entry("arm").or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    if let toml::Value::Table(arm) = arm {
+        arm.entry("damping_ratios")
+            .or_insert_with(|| toml::Value::try_from(&robot.arm.damping_ratios).expect("floats serialise"));
     }
 }
 

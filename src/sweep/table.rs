@@ -81,7 +81,7 @@ fn read_rows(plan: &Plan, dir: &Path) -> Result<Vec<Row>, SweepError> {
 }
 
 /// The case files as one JSON array, each indented as serde_json's pretty printer would.
-fn json(rows: &[Row]) -> String {
+pub(crate) fn json(rows: &[Row]) -> String {
     let items: Vec<String> = rows
         .iter()
         .map(|r| r.text.trim_end().lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n"))
@@ -91,7 +91,7 @@ fn json(rows: &[Row]) -> String {
 
 /// Columns: index, hash, each varied key, then every summary scalar met in any case, in
 /// the order first met.
-fn csv(plan: &Plan, rows: &[Row]) -> String {
+pub(crate) fn csv(plan: &Plan, rows: &[Row]) -> String {
     let mut summary_columns: Vec<&str> = Vec::new();
     let mut seen = HashSet::new();
     for (path, _) in rows.iter().flat_map(|r| &r.scalars) {

@@ -1,0 +1,134 @@
+//! `pipearm design`: the fastest safe lift (or any objective under limits), nominal or robust,
+//! and the seed's table of acceleration limits per drive profile.
+
+use std::path::PathBuf;
+
+use anyhow::{Result, bail};
+
+use pipearm::design::table::acceleration_table;
+use pipearm::design::{Design, Limit, Over, Request, Robustness, design, write_json};
+use pipearm::envelope::dist::Spread;
+
+/// `pipearm design` arguments.
+#[derive(clap::Args)]
+#[command(after_help = "Examples:
+  pipearm design scenarios/default.toml --minimize drive.duration_s --over drive.duration_s=8..25 \\
+      --limit residual.amplitude_m<=0.001 --limit peak_force_n<=3000 \\
+      --spread dampeners.0.gap_m=uniform:0..0.0004 --samples 32
+  pipearm design scenarios/default.toml --table --limit residual.amplitude_m<=0.001 --nominal")]
+pub struct DesignArgs {
+    /// Scenario file.
+    scenario: PathBuf,
+    /// A limit on a figure of the run's summary: KEY<=VALUE or KEY>=VALUE (peak_force_n is the
+    /// largest pair's peak force; else a dotted summary path such as residual.amplitude_m).
+    #[arg(long, value_name = "KEY<=VALUE")]
+    limit: Vec<Limit>,
+    /// What to minimise: one of the --over keys (e.g. drive.duration_s) or a figure.
+    #[arg(long, value_name = "KEY", required_unless_present = "table")]
+    minimize: Option<String>,
+    /// A searched key and its range: KEY=A..B. Repeat.
+    #[arg(long, value_name = "KEY=A..B", required_unless_present = "table")]
+    over: Vec<Over>,
+    /// Hold the limits at the envelope's p95 over these spreads (as `pipearm envelope`).
+    #[arg(long, value_name = "KEY=DIST", requires = "samples", conflicts_with = "nominal")]
+    spread: Vec<Spread>,
+    /// Draws of the spreads per candidate (the same draws for every candidate).
+    #[arg(long, value_name = "N")]
+    samples: Option<usize>,
+    /// Hold the limits in the scenario's own run (the default without --spread).
+    #[arg(long)]
+    nominal: bool,
+    /// Seed of the draws.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The seed's table instead of a search: per drive profile (trapezoidal, S-curve, each
+    /// shaper), the largest start/stop acceleration within the limits.
+    #[arg(long, conflicts_with_all = ["minimize", "over"])]
+    table: bool,
+    /// Relative tolerance of the search on each key (of its range).
+    #[arg(long, default_value_t = 0.01)]
+    tolerance: f64,
+    /// Most candidates a search evaluates.
+    #[arg(long, default_value_t = 40)]
+    budget: usize,
+    /// Worker threads (default: one per CPU).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    threads: Option<u32>,
+    /// Output file (JSON).
+    #[arg(long, default_value = "recordings/design.json")]
+    out: PathBuf,
+}
+
+pub fn design_command(args: DesignArgs) -> Result<()> {
+    let robustness = if args.spread.is_empty() {
+        Robustness::Nominal
+    } else {
+        Robustness::Envelope { spreads: args.spread, samples: args.samples.expect("required by clap"), seed: args.seed }
+    };
+    if !(args.tolerance > 0.0 && args.tolerance < 1.0) {
+        bail!("--tolerance {}: allowed 0 < tolerance < 1", args.tolerance);
+    }
+    let threads = args.threads.map(|n| n as usize);
+    if args.table {
+        let table = acceleration_table(&args.scenario, &args.limit, &robustness, args.tolerance, threads)?;
+        println!("largest start/stop acceleration within the limits ({} runs per candidate):", table.runs_per_candidate);
+        let names: Vec<String> = table.limits.iter().map(show_limit).collect();
+        println!("{:>12} {:>7} {:>18} {:>9}  {}  {:>10}", "profile", "shaper", "accel deg/s^2", "ramp", names.join("  "), "candidates");
+        for row in &table.rows {
+            let accel = match row.largest_accel_deg_s2 {
+                Some(a) if row.at_least => format!(">= {a:.2}"),
+                Some(a) => format!("{a:.2}"),
+                None => "none".into(),
+            };
+            let figures: Vec<String> = row.figures.iter().zip(&names).map(|(f, n)| format!("{f:>w$.4e}", w = n.len())).collect();
+            println!(
+                "{:>12} {:>7} {:>18} {:>9} {}  {:>10}",
+                row.profile,
+                row.shaper.as_deref().unwrap_or("-"),
+                accel,
+                row.ramp_fraction.map_or("-".into(), |f| format!("{f:.4}")),
+                figures.join("  "),
+                row.candidates
+            );
+        }
+        write_json(&args.out, &table)?;
+        println!("wrote {}", args.out.display());
+        return Ok(());
+    }
+    let request = Request {
+        scenario: args.scenario,
+        limits: args.limit,
+        minimize: args.minimize.expect("required by clap"),
+        over: args.over,
+        robustness,
+        tolerance: args.tolerance,
+        budget: args.budget,
+        threads,
+    };
+    let found = design(&request)?;
+    print_design(&found);
+    write_json(&args.out, &found)?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+fn show_limit(limit: &Limit) -> String {
+    format!("{}{}{}", limit.figure, if limit.upper { "<=" } else { ">=" }, limit.bound)
+}
+
+fn print_design(found: &Design) {
+    println!(
+        "{} search: {} candidates, {} runs ({} per candidate)",
+        found.outcome.method, found.candidates, found.runs, found.runs_per_candidate
+    );
+    match &found.outcome.best {
+        Some(best) => {
+            let keys: Vec<String> = found.keys.iter().zip(&best.x).map(|(k, v)| format!("{k} = {v:.6}")).collect();
+            println!("best: {} ({} = {:.6})", keys.join(", "), found.minimize, best.objective);
+            for (limit, figure) in found.limits.iter().zip(&best.figures) {
+                println!("  {:<40} {figure:.6e}", show_limit(limit));
+            }
+        }
+        None => println!("no candidate in the box meets every limit"),
+    }
+}
