@@ -16,6 +16,7 @@ pub mod bench;
 pub mod compare;
 pub mod contact;
 pub mod drive;
+pub mod envelope;
 pub mod export;
 pub mod fit;
 pub mod guard;
