@@ -214,8 +214,8 @@ fn sensitivity(
                 .enumerate()
                 .map(|(i, key)| KeySensitivity {
                     key: key.clone(),
-                    first: Some(indices.first[i].clone()),
-                    total: Some(indices.total[i].clone()),
+                    first: Some(indices.first[i]),
+                    total: Some(indices.total[i]),
                     coefficient: None,
                 })
                 .collect::<Vec<_>>();
@@ -226,7 +226,7 @@ fn sensitivity(
             let ranking = keys
                 .iter()
                 .zip(&fit.coefficients)
-                .map(|(key, c)| KeySensitivity { key: key.clone(), first: None, total: None, coefficient: Some(c.clone()) })
+                .map(|(key, c)| KeySensitivity { key: key.clone(), first: None, total: None, coefficient: Some(*c) })
                 .collect::<Vec<_>>();
             (ranking, Some(fit.r_squared))
         }
