@@ -136,7 +136,7 @@ impl CostFunction for Penalised<'_, '_> {
 /// A grid of 3 (5 in two coordinates) points per coordinate, then Nelder–Mead from the best.
 fn nelder_mead(problem: &Problem) -> Outcome {
     let d = problem.bounds.len();
-    let per_axis = if d <= 2 { 5 } else { 3 };
+    let per_axis: usize = if d <= 2 { 5 } else { 3 };
     let grid: Vec<Vec<f64>> = (0..per_axis.pow(d as u32))
         .map(|mut n| {
             problem
