@@ -556,8 +556,12 @@ fn print_summary(path: &Path, s: &RunSummary) {
 /// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its
 /// effort (the run is not stopped: the drive is ideal, the URDF's effort is the real one's).
 fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
+    let shaped = match (&d.shaper, d.shaper_hz) {
+        (Some(shaper), Some(hz)) => format!(" with a {shaper} shaper at {hz:.3} Hz"),
+        _ => String::new(),
+    };
     println!(
-        "drive               {}: peak rate {:.3} °/s (lift velocity limit {:.3}), peak accel {:.3} °/s²",
+        "drive               {}{shaped}: peak rate {:.3} °/s (lift velocity limit {:.3}), peak accel {:.3} °/s²",
         d.profile, d.peak_rate_deg_s, d.velocity_limit_deg_s, d.peak_accel_deg_s2
     );
     if !d.torque_within_effort {

@@ -271,6 +271,12 @@ pub struct DriveLimits {
     pub effort_n_m: f64,
     /// Whether the run's peak drive torque is within that effort.
     pub torque_within_effort: bool,
+    /// The input shaper convolved with the profile (`zv`, `zvd`, `ei`); absent when unshaped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper: Option<String>,
+    /// The natural frequency the shaper is tuned to, Hz; absent when unshaped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper_hz: Option<f64>,
 }
 
 impl DriveLimits {
@@ -284,6 +290,8 @@ impl DriveLimits {
             velocity_limit_deg_s: lift.velocity_rad_s.to_degrees(),
             effort_n_m: lift.effort_n_m,
             torque_within_effort: peak_drive_torque_n_m <= lift.effort_n_m,
+            shaper: motion.shaper().map(|s| s.name().into()),
+            shaper_hz: motion.shaper_hz(),
         }
     }
 }

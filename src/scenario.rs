@@ -7,6 +7,7 @@
 //! (`robot`, a table drive's `file`) are relative to the scenario file.
 
 mod actuator;
+mod drive;
 
 use std::path::{Path, PathBuf};
 
@@ -16,7 +17,6 @@ use thiserror::Error;
 use crate::arm::Fidelity;
 use crate::beam::{BeamModel, ConcentratedMass};
 use crate::contact::ForceLaw;
-use crate::drive::{DriveError, MotionProfile, SCurveLimit, TableError, TrapezoidLimit};
 use crate::integrate::IntegratorKind;
 use crate::model::{
     Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, HeldString, Model, Payload,
@@ -26,6 +26,7 @@ use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
+pub use drive::DriveSpec;
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
 pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -194,33 +195,6 @@ pub struct DampenerSpec {
     pub law: ForceLaw,
 }
 
-/// Hub motion profiles; angles in degrees.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "profile", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum DriveSpec {
-    /// Constant rate from start to end.
-    Uniform { start_deg: f64, end_deg: f64, duration_s: f64 },
-    /// Accel-limited: give `accel_deg_s2` or `ramp_fraction` (accel phase / duration).
-    Trapezoidal { start_deg: f64, end_deg: f64, duration_s: f64, accel_deg_s2: Option<f64>, ramp_fraction: Option<f64> },
-    /// Jerk-limited 7 segments: give `accel_deg_s2` + `jerk_deg_s3`, or `ramp_fraction` +
-    /// `jerk_fraction`.
-    SCurve {
-        start_deg: f64,
-        end_deg: f64,
-        duration_s: f64,
-        accel_deg_s2: Option<f64>,
-        jerk_deg_s3: Option<f64>,
-        ramp_fraction: Option<f64>,
-        jerk_fraction: Option<f64>,
-    },
-    /// Hold still at an angle.
-    Hold { angle_deg: f64 },
-    /// Through the rows of a CSV file of time and angle (header `t[s],angle[deg]`, relative to
-    /// the scenario file): the clamped cubic spline, at rest at the first row, at
-    /// `end_rate_deg_s` (default 0: at rest) at the last row and after it (docs/drive.md).
-    Table { file: PathBuf, end_rate_deg_s: Option<f64> },
-}
-
 /// A scenario file, checked and resolved: what it says, and the model of the machine and scene.
 #[derive(Debug, Clone)]
 pub struct Scenario {
@@ -236,8 +210,8 @@ impl Scenario {
     /// Reads, checks and resolves a scenario file and the robot it names.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        let spec: ScenarioSpec =
-            toml::from_str(&text).map_err(|e| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
+        let spec: ScenarioSpec = toml::from_str(&text)
+            .map_err(|e| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) })?;
         Self::from_spec(path, spec)
     }
 
@@ -275,7 +249,7 @@ impl Scenario {
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
         let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
-        let model = Model {
+        let mut model = Model {
             name: spec.name.clone(),
             robot,
             payload,
@@ -293,6 +267,9 @@ impl Scenario {
             time: spec.time,
             sensors,
         };
+        if let Some((_, shaper_hz)) = spec.drive.shaping() {
+            model.drive.motion = check.shaped(&spec.drive, shaper_hz, &model)?;
+        }
         check.model(&model)?;
         Ok(Scenario { path: path.into(), spec, model })
     }
@@ -471,62 +448,6 @@ impl Check<'_> {
         Ok(())
     }
 
-    /// The drive's profile; a table is read from its file, relative to the scenario.
-    fn drive(&self, drive: &DriveSpec) -> Result<MotionProfile, ScenarioError> {
-        match drive {
-            DriveSpec::Table { file, end_rate_deg_s } => {
-                let csv = Scenario::table_path(self.path, file);
-                MotionProfile::from_csv(&csv, end_rate_deg_s.unwrap_or(0.0).to_radians()).map_err(|e| match e {
-                    TableError::Drive { source, .. } => drive_error(self.path, source),
-                    other => self.invalid("drive.file", other.to_string()),
-                })
-            }
-            law => law.motion().map_err(|e| drive_error(self.path, e)),
-        }
-    }
-
-    /// The drive against the lift joint's URDF limits: its angles within the joint's range over
-    /// the run, its peak rate within the joint's velocity (known before the run, so refused;
-    /// the torque is known only after it, and flagged in the run's summary).
-    fn drive_limits(&self, model: &Model) -> Result<(), ScenarioError> {
-        let lift = &model.robot.lift;
-        let (lo, hi) = lift.limits_rad;
-        let deg = f64::to_degrees;
-        let limits = format!("the lift joint's limits {:.3} ..= {:.3} deg", deg(lo), deg(hi));
-        let outside = |angle: f64| !(lo - 1e-9..=hi + 1e-9).contains(&angle);
-        let motion = &model.drive.motion;
-        let table = motion.name() == "table";
-        if table {
-            let (min, max) = motion.angle_range_rad(model.duration_s());
-            if outside(min) || outside(max) {
-                let span = format!("the table's spline spans {:.3} ..= {:.3} deg over the run", deg(min), deg(max));
-                return Err(self.invalid("drive.file", format!("{span}: allowed within {limits}")));
-            }
-        }
-        for (key, angle) in [("drive.start_deg", motion.start_rad()), ("drive.end_deg", motion.end_rad())] {
-            if !table && outside(angle) {
-                return Err(self.invalid(key, format!("{:.3} is outside {limits}", deg(angle))));
-            }
-        }
-        let (rate, velocity) = (motion.peak_rate_rad_s(), lift.velocity_rad_s);
-        if rate > velocity * (1.0 + 1e-9) {
-            let (key, remedy) =
-                if table { ("drive.file", "a slower table") } else { ("drive.duration_s", "a longer move") };
-            return Err(self.invalid(
-                key,
-                format!(
-                    "the drive's peak rate {:.3} deg/s exceeds the velocity limit of the lift joint `{}` \
-                     ({:.3} deg/s = {velocity} rad/s in {}): allowed a peak rate up to that ({remedy})",
-                    deg(rate),
-                    lift.name,
-                    deg(velocity),
-                    model.robot.source.display()
-                ),
-            ));
-        }
-        Ok(())
-    }
-
     fn dampener(
         &self,
         i: usize,
@@ -571,59 +492,4 @@ impl Check<'_> {
         }
         Ok(dampener)
     }
-}
-
-impl DriveSpec {
-    /// The motion profile of a built-in law, in radians. A table is read relative to its
-    /// scenario file ([`Scenario::load`], [`MotionProfile::from_csv`]); here it is an error.
-    pub fn motion(&self) -> Result<MotionProfile, DriveError> {
-        let r = f64::to_radians;
-        match *self {
-            DriveSpec::Uniform { start_deg, end_deg, duration_s } => {
-                MotionProfile::uniform(r(start_deg), r(end_deg), duration_s)
-            }
-            DriveSpec::Trapezoidal { start_deg, end_deg, duration_s, accel_deg_s2, ramp_fraction } => {
-                let limit = match (accel_deg_s2, ramp_fraction) {
-                    (Some(a), None) => TrapezoidLimit::AccelRadS2(r(a)),
-                    (None, Some(f)) => TrapezoidLimit::RampFraction(f),
-                    _ => return Err(either("accel_deg_s2 | ramp_fraction")),
-                };
-                MotionProfile::trapezoidal(r(start_deg), r(end_deg), duration_s, limit)
-            }
-            DriveSpec::SCurve {
-                start_deg,
-                end_deg,
-                duration_s,
-                accel_deg_s2,
-                jerk_deg_s3,
-                ramp_fraction,
-                jerk_fraction,
-            } => {
-                let limit = match (accel_deg_s2, jerk_deg_s3, ramp_fraction, jerk_fraction) {
-                    (Some(a), Some(j), None, None) => SCurveLimit::AccelJerk { accel_rad_s2: r(a), jerk_rad_s3: r(j) },
-                    (None, None, Some(f), Some(jf)) => SCurveLimit::Fractions { ramp_fraction: f, jerk_fraction: jf },
-                    _ => return Err(either("accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction")),
-                };
-                MotionProfile::s_curve(r(start_deg), r(end_deg), duration_s, limit)
-            }
-            DriveSpec::Hold { angle_deg } => Ok(MotionProfile::hold(r(angle_deg))),
-            DriveSpec::Table { .. } => Err(DriveError::InvalidParameter {
-                name: "file",
-                value: f64::NAN,
-                allowed: "a table read with its scenario (Scenario::load) or by MotionProfile::from_csv".into(),
-            }),
-        }
-    }
-}
-
-fn either(allowed: &str) -> DriveError {
-    DriveError::InvalidParameter { name: "limit", value: f64::NAN, allowed: format!("exactly one of: {allowed}") }
-}
-
-/// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
-fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
-    let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = &e;
-    let key = name.replace("_rad", "_deg");
-    let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
-    ScenarioError::Invalid { path: path.into(), key: format!("drive.{key}"), message }
 }

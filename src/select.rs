@@ -1,5 +1,6 @@
-//! The model a scene needs (`model = { kind = "auto" }`, the default), and the seed's motion
-//! advice (§4) for the arm's class.
+//! The model a scene needs (`model = { kind = "auto" }`, the default), the seed's motion advice
+//! (§4) for the arm's class, and the frequency a shaped drive is tuned to by default
+//! ([`shaper_tuning_hz`]).
 //!
 //! The cheapest fidelity that resolves what the scene excites:
 //! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
@@ -22,6 +23,7 @@
 //!
 //! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
 
+use nalgebra::Complex;
 use serde::Serialize;
 
 use crate::analysis::StiffnessClass;
@@ -131,15 +133,8 @@ fn coupled_modes(model: &Model, beam: &BeamModel, modes: &ModalBasis, band_hz: f
     if model.drive.actuator == crate::actuator::Actuator::Ideal {
         return None;
     }
-    let end_rad = model.drive.motion.end_rad();
     let frequencies = |k: usize| -> Option<Vec<f64>> {
-        let fidelity = Fidelity::Modal { modes: k };
-        let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
-        let drive = model.hub_drive_held_at(end_rad);
-        let poles = ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()?;
-        let mut hz: Vec<f64> = poles.iter().filter(|p| p.im > 0.0).map(|p| p.im / std::f64::consts::TAU).collect();
-        hz.sort_by(f64::total_cmp);
-        Some(hz)
+        Some(oscillating_poles_at_end(model, beam, modes, k)?.iter().map(|p| p.im / std::f64::consts::TAU).collect())
     };
     let cap = modes.len().min(COUPLED_REFERENCE_MODES);
     let reference: Vec<f64> = frequencies(cap)?.into_iter().filter(|f| *f <= band_hz).collect();
@@ -151,6 +146,38 @@ fn coupled_modes(model: &Model, beam: &BeamModel, modes: &ModalBasis, band_hz: f
     };
     let k = (1..cap).find(|&k| frequencies(k).is_some_and(|hz| reproduces(&hz))).unwrap_or(cap);
     Some((k, reference))
+}
+
+/// The oscillating poles (Im λ > 0, lowest first, rad/s) of the arm at `Modal { modes: k }` with
+/// its drive, linearised at rest at the end of the drive's path; `None` if that arm cannot be
+/// built or linearised.
+fn oscillating_poles_at_end(
+    model: &Model,
+    beam: &BeamModel,
+    modes: &ModalBasis,
+    k: usize,
+) -> Option<Vec<Complex<f64>>> {
+    let fidelity = Fidelity::Modal { modes: k };
+    let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
+    let drive = model.hub_drive_held_at(model.drive.motion.end_rad());
+    let poles = ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()?;
+    let mut oscillating: Vec<Complex<f64>> = poles.into_iter().filter(|p| p.im > 0.0).collect();
+    oscillating.sort_by(|a, b| a.im.total_cmp(&b.im));
+    Some(oscillating)
+}
+
+/// The natural frequency (Hz) an input shaper on the model's drive is tuned to by default: the
+/// first mode of the arm with its payload, linearised at rest at the end of the drive's path
+/// (gravity and stiffening there included) — with a servo or hydraulic actuator the first
+/// coupled arm+drive mode. `|λ| / 2π` of its pole, from a model of the clamped modes up to
+/// [`COUPLED_REFERENCE_MODES`] (the first frequency converges long before). `None` if the arm
+/// cannot be built or linearised, or has no oscillating mode.
+pub fn shaper_tuning_hz(model: &Model) -> Option<f64> {
+    let beam = BeamModel::new(model.beam_spec().ok()?).ok()?;
+    let modes = beam.modes().ok()?;
+    let k = modes.len().min(COUPLED_REFERENCE_MODES);
+    let first = *oscillating_poles_at_end(model, &beam, &modes, k)?.first()?;
+    Some(first.norm() / std::f64::consts::TAU)
 }
 
 /// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes

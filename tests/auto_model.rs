@@ -79,6 +79,8 @@ fn motion_advice_flags_drives_beyond_the_seed_limits() {
         duration_s: 5.0,
         accel_deg_s2: None,
         ramp_fraction: Some(0.2),
+        shaper: None,
+        shaper_hz: None,
     }
     .motion()
     .unwrap();

@@ -282,3 +282,30 @@ fn an_actuator_too_weak_or_too_slow_for_the_drive_is_named() {
         refused_run("weak-servo", with(SERVO), |t| t.replace("torque_limit_n_m=\"160\"", "torque_limit_n_m=\"50\""));
     assert!(m.contains("key `actuator.kind`") && m.contains("torque_limit_n_m"), "{m}");
 }
+
+/// `drive.shaper` and `drive.shaper_hz`: a shaper only on a point-to-point move, a positive
+/// frequency, a known name, a lift longer than the shaper.
+#[test]
+fn shaper_keys_are_checked_naming_the_key() {
+    let hold = "profile = \"hold\"\nangle_deg = 0.0\nshaper = \"zv\"\n";
+    let m = load_error("shaper-hold", |t| {
+        let start = t.find("profile = ").unwrap();
+        let end = t.find("ramp_fraction = 0.2\n").unwrap() + "ramp_fraction = 0.2\n".len();
+        format!("{}{hold}{}", &t[..start], &t[end..])
+    });
+    assert!(m.contains("drive.shaper") && m.contains("uniform, trapezoidal and s-curve"), "{m}");
+    let shaped = |extra: &'static str| {
+        move |t: String| t.replace("ramp_fraction = 0.2", &format!("ramp_fraction = 0.2\n{extra}"))
+    };
+    let m = load_error("shaper-hz", shaped("shaper = \"zvd\"\nshaper_hz = -1.0"));
+    assert!(m.contains("drive.shaper_hz") && m.contains("> 0"), "{m}");
+    let m = load_error("shaper-hz-nan", shaped("shaper = \"zvd\"\nshaper_hz = nan"));
+    assert!(m.contains("drive.shaper_hz"), "{m}");
+    let m = load_error("shaper-name", shaped("shaper = \"zvdd\""));
+    assert!(m.contains("zvdd") && m.contains("zvd") && m.contains("ei"), "{m}");
+    let m = load_error("shaper-alone", shaped("shaper_hz = 0.5"));
+    assert!(m.contains("drive.shaper_hz") && m.contains("drive.shaper"), "{m}");
+    // ZVD at 0.05 Hz lasts 20 s, longer than the 15 s lift.
+    let m = load_error("shaper-long", shaped("shaper = \"zvd\"\nshaper_hz = 0.05"));
+    assert!(m.contains("drive.duration_s") && m.contains("shaper's length"), "{m}");
+}

@@ -20,6 +20,8 @@ fn short_lab() -> Model {
         duration_s: 2.0,
         accel_deg_s2: None,
         ramp_fraction: Some(0.2),
+        shaper: None,
+        shaper_hz: None,
     };
     s.spec.time.settle_s = 0.5;
     Scenario::from_spec(&s.path, s.spec).unwrap().model

@@ -5,11 +5,12 @@
 use super::profile::{Kind, MotionProfile};
 
 impl MotionProfile {
-    /// Instants where the rate jumps (uniform profile only), as
+    /// Instants where the rate jumps (uniform profile, shaped or not) as
     /// `(time s, jump in rate rad/s)`; empty for every other profile.
     /// [`Self::sample`] returns the rate just after each instant.
     pub fn rate_jumps(&self) -> Vec<(f64, f64)> {
-        match self.kind {
+        match &self.kind {
+            Kind::Shaped(shaping) => Self::shaped_rate_jumps(shaping, self.duration_s),
             Kind::Uniform => {
                 let rate = (self.end_rad - self.start_rad) / self.duration_s;
                 vec![(0.0, rate), (self.duration_s, -rate)]
@@ -19,19 +20,22 @@ impl MotionProfile {
     }
 
     /// Instants inside the motion where its acceleration or jerk jumps (the ends of its
-    /// constant-jerk pieces — a table's samples; the end of a spin-up's ramp), s, in order. A time step that
+    /// constant-jerk pieces — a table's samples, a shaped profile's shifted breakpoints `t_i + b`;
+    /// the end of a spin-up's ramp), s, in order. A time step that
     /// straddles one integrates across a kink of the load; fixed steps that divide the pieces land
     /// on them, a controlled step is cut to end there.
     pub fn breakpoints_s(&self) -> Vec<f64> {
-        if let Kind::Table { .. } = self.kind {
+        if let Kind::Table { .. } | Kind::Shaped(_) = self.kind {
             let inner = self.segments.iter().skip(1).map(|s| s.t0_s);
             return inner.chain(std::iter::once(self.duration_s)).collect();
         }
         let half = 0.5 * self.duration_s;
         let inner: Vec<f64> = self.segments.iter().map(|s| s.t0_s).filter(|&t| t > 0.0 && t < half).collect();
+        // A piece starting at the midpoint: a triangular trapezoid's acceleration reverses there.
+        let middle = self.segments.iter().any(|s| (s.t0_s - half).abs() <= 1e-12 * self.duration_s).then_some(half);
         let mirrored = inner.iter().rev().map(|t| self.duration_s - t);
         let end = (self.duration_s > 0.0).then_some(self.duration_s);
-        inner.iter().copied().chain(mirrored).chain(end).collect()
+        inner.iter().copied().chain(middle).chain(mirrored).chain(end).collect()
     }
 }
 
@@ -39,6 +43,15 @@ impl MotionProfile {
 mod tests {
     use crate::drive::test_support::{DUR, END, START, assert_close};
     use crate::drive::{MotionProfile, SCurveLimit, TrapezoidLimit};
+
+    /// A triangular trapezoid's acceleration reverses at the midpoint: a breakpoint.
+    #[test]
+    fn a_triangle_breaks_at_its_midpoint() {
+        let triangle = MotionProfile::trapezoidal(0.0, 1.5, 4.0, TrapezoidLimit::RampFraction(0.5)).unwrap();
+        assert_eq!(triangle.breakpoints_s(), vec![2.0, 4.0]);
+        let (before, after) = (triangle.sample(2.0 - 1e-9), triangle.sample(2.0 + 1e-9));
+        assert!(before.accel_rad_s2 > 0.0 && after.accel_rad_s2 < 0.0);
+    }
 
     /// Between breakpoints the jerk is constant (a kink-free piece); at each breakpoint the
     /// acceleration or the jerk changes.

@@ -27,20 +27,28 @@
 //! | `spin-up`     | angle, rate, accel, jerk      | snap (d jerk/dt) jumps at 0 and the ramp time   |
 //! | `hold`        | everything (constant)         | nothing                                         |
 //! | `table`       | angle, rate; accel on `[0, T]` | accel steps from/to 0 at 0 and `T`; jerk is piecewise constant and jumps at the samples |
+//! | shaped        | its base's                    | its base's, at every `t_i + b` (`t_i` an impulse's time, `b` 0 or a breakpoint of the base); a shaped uniform's rate jumps by `A_i` times the base's |
 //!
 //! # Implementation
+//!
+//! A shaped profile ([`MotionProfile::shaped`], [`Shaper`]) is a uniform, trapezoidal or
+//! s-curve base of duration `T_b` convolved with an input shaper's impulses `(t_i, A_i)`,
+//! `θ(t) = Σ A_i θ_base(t − t_i)` with `Σ A_i = 1`: it keeps the base's start and end angles,
+//! lasts `T = T_b + t_N` and is not point-symmetric. [`MotionProfile::name`] is its base's.
 //!
 //! The symmetric profiles (uniform, trapezoidal, s-curve) are stored as
 //! constant-jerk segments covering the first half `[0, T/2]`, with the state
 //! at each segment start precomputed at construction. The second half follows
 //! from the point symmetry `θ(t) = A + B − θ(T − t)`, so `θ(T) = B` holds
-//! exactly (to rounding). Sampling is a closed-form cubic per segment; there is
-//! no numerical integration.
+//! exactly (to rounding). A table and a shaped profile are stored as segments over all of
+//! `[0, T]`. Sampling is a closed-form cubic per segment; there is no numerical integration.
 //!
 //! # Layout
 //!
 //! * `profile`: the profile kinds and their constructors.
 //! * `trapezoid`, `s_curve`: each limited profile's timing, solved from its limit.
+//! * `shaper`: input shapers (ZV, ZVD, EI), their impulses and residual vibration.
+//! * `shaped`: a move convolved with a shaper's impulses.
 //! * `state`: the kinematic state and constant-jerk motion of it.
 //! * `sample`: the state of a profile at a time.
 //! * `table`: the clamped cubic spline through samples of angle against time.
@@ -52,6 +60,8 @@ mod breakpoints;
 mod profile;
 mod s_curve;
 mod sample;
+mod shaped;
+mod shaper;
 mod state;
 mod table;
 mod table_file;
@@ -62,6 +72,7 @@ mod validate;
 
 pub use profile::MotionProfile;
 pub use s_curve::SCurveLimit;
+pub use shaper::{EI_TOLERANCE, Shaper, residual_vibration};
 pub use state::DriveState;
 pub use table::MIN_TABLE_SAMPLES;
 pub use table_file::TableError;

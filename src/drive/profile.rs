@@ -6,20 +6,39 @@
 use std::f64::consts::PI;
 
 use super::s_curve::{SCurveLimit, s_curve_shape};
+use super::shaper::Shaper;
 use super::state::{DriveState, Piece, Segment, chain};
 use super::table;
 use super::trapezoid::{TrapezoidLimit, trapezoid_shape};
 use super::validate::{DriveError, Move, invalid, require_finite, require_positive};
 
 /// Which kind of profile a [`MotionProfile`] is.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub(super) enum Kind {
     Uniform,
     Trapezoidal,
     SCurve,
     Hold,
-    SpinUp { final_rate_rad_s: f64 },
-    Table { end_rate_rad_s: f64 },
+    SpinUp {
+        final_rate_rad_s: f64,
+    },
+    Table {
+        end_rate_rad_s: f64,
+    },
+    /// A base profile convolved with an input shaper's impulses ([`super::shaped`]).
+    Shaped(Box<Shaping>),
+}
+
+/// What a shaped profile is made of: its base (a uniform, trapezoidal or s-curve move) and the
+/// impulses it is convolved with.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Shaping {
+    pub(super) base: MotionProfile,
+    pub(super) shaper: Shaper,
+    pub(super) frequency_hz: f64,
+    pub(super) damping_ratio: f64,
+    /// `(t_i s, A_i)`, first at 0, amplitudes summing to 1.
+    pub(super) impulses: Vec<(f64, f64)>,
 }
 
 /// Peak magnitudes of a profile (rad/s, rad/s², rad/s³).
@@ -37,11 +56,11 @@ pub struct MotionProfile {
     pub(super) start_rad: f64,
     pub(super) end_rad: f64,
     pub(super) duration_s: f64,
-    peak_rate_rad_s: f64,
-    peak_accel_rad_s2: f64,
-    peak_jerk_rad_s3: f64,
-    /// Constant-jerk segments: `[0, T/2]` of a symmetric profile, `[0, T]` of a table (empty
-    /// for hold and spin-up).
+    pub(super) peak_rate_rad_s: f64,
+    pub(super) peak_accel_rad_s2: f64,
+    pub(super) peak_jerk_rad_s3: f64,
+    /// Constant-jerk segments: `[0, T/2]` of a symmetric profile, `[0, T]` of a table or a shaped
+    /// profile (empty for hold and spin-up).
     pub(super) segments: Vec<Segment>,
 }
 
@@ -235,9 +254,11 @@ impl MotionProfile {
     }
 
     /// Profile name: `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`,
-    /// `"spin-up"` or `"table"`.
+    /// `"spin-up"` or `"table"`. A shaped profile is named by its base (its shaper by
+    /// [`Self::shaper`]).
     pub fn name(&self) -> &'static str {
-        match self.kind {
+        match &self.kind {
+            Kind::Shaped(shaping) => shaping.base.name(),
             Kind::Uniform => "uniform",
             Kind::Trapezoidal => "trapezoidal",
             Kind::SCurve => "s-curve",

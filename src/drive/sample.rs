@@ -14,6 +14,7 @@ impl MotionProfile {
         match self.kind {
             Kind::SpinUp { final_rate_rad_s } => return self.sample_spin_up(final_rate_rad_s, t_s),
             Kind::Table { end_rate_rad_s } => return self.sample_table(end_rate_rad_s, t_s),
+            Kind::Shaped(_) => return self.sample_table(0.0, t_s),
             _ => {}
         }
         if t_s < 0.0 {
@@ -43,8 +44,8 @@ impl MotionProfile {
         }
     }
 
-    /// A table's state at `t_s` (s): at rest at its first sample before it, its
-    /// spline on `[0, T)`, its end rate `end_rate` (rad/s) from its last sample on.
+    /// A table's (or shaped profile's) state at `t_s` (s): at rest at its start before 0, its
+    /// segments on `[0, T)`, its end rate `end_rate` (rad/s; 0 when shaped) from `T` on.
     fn sample_table(&self, end_rate: f64, t_s: f64) -> DriveState {
         if t_s < 0.0 {
             DriveState::at_rest(self.start_rad)
