@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
 # Speed of a 1000-run envelope of the default scene (docs/envelope.md): wall time with --threads 1
-# and --threads 2 (fresh folders, nothing skipped), and the whole-process time of single runs of
-# the same scene (`pipearm run --no-record`) for reference, all in the same session.
-# Prints t1, t2, the parallel efficiency t1/(2 t2), and t1 against SAMPLES single runs.
-# Usage: envelope_timing.sh [PIPEARM] [SAMPLES] [SINGLE_RUNS]
+# and --threads 2 (fresh folders, nothing skipped), and for reference the in-process `total` that
+# `pipearm run --no-record` prints for single runs of the same scene (reading the scenario to the
+# end), ROUNDS rounds interleaved in one session. Prints each round, then the medians: the
+# parallel efficiency t1/(2 t2), and t2 against SAMPLES single runs' totals / 2 (goal <= 1.2).
+# Usage: envelope_timing.sh [PIPEARM] [SAMPLES] [ROUNDS] [SINGLE_RUNS_PER_ROUND]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PIPEARM=${1:-pipearm}
 SAMPLES=${2:-1000}
-SINGLE=${3:-20}
+ROUNDS=${3:-5}
+SINGLE=${4:-20}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 SPREADS=(--spread dampeners.0.gap_m=uniform:0.0001..0.0003
@@ -22,18 +24,21 @@ envelope() { # threads → wall seconds
     --sensitivity regression --threads "$1" --out "$TMP/out" > /dev/null
   echo "$EPOCHREALTIME - $w0" | bc -l
 }
-single() { # SINGLE whole-process runs → mean wall seconds
-  local w0=$EPOCHREALTIME
-  for _ in $(seq "$SINGLE"); do "$PIPEARM" run scenarios/default.toml --no-record > /dev/null; done
-  echo "($EPOCHREALTIME - $w0) / $SINGLE" | bc -l
+single() { # SINGLE runs → mean in-process total, seconds
+  for _ in $(seq "$SINGLE"); do
+    "$PIPEARM" run scenarios/default.toml --no-record | awk '$1 == "total" {print $2}'
+  done | awk '{s += $1} END {print s / NR}'
 }
-S0=$(single)
-T2=$(envelope 2)
-T1=$(envelope 1)
-S1=$(single)
-S=$(echo "($S0 + $S1) / 2" | bc -l)
-printf 'single run (whole process, mean of %d before and after): %.4f s\n' "$((2 * SINGLE))" "$S"
-printf 'envelope of %d runs: 1 thread %.2f s (%.4f s a run, %.2f x a single run), 2 threads %.2f s\n' \
-  "$SAMPLES" "$T1" "$(echo "$T1 / $SAMPLES" | bc -l)" "$(echo "$T1 / ($SAMPLES * $S)" | bc -l)" "$T2"
-printf 'parallel efficiency t1/(2 t2) = %.1f %%; 2 threads against %d single runs / 2: %.3f (goal <= 1.2)\n' \
-  "$(echo "100 * $T1 / (2 * $T2)" | bc -l)" "$SAMPLES" "$(echo "$T2 / ($SAMPLES * $S / 2)" | bc -l)"
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+: > "$TMP/rounds"
+for round in $(seq "$ROUNDS"); do
+  S=$(single); T2=$(envelope 2); T1=$(envelope 1)
+  echo "$S $T1 $T2" >> "$TMP/rounds"
+  printf 'round %d: single run total %.4f s, envelope 1 thread %.2f s, 2 threads %.2f s\n' "$round" "$S" "$T1" "$T2"
+done
+EFF=$(awk '{print $2 / (2 * $3)}' "$TMP/rounds" | median)
+GOAL=$(awk -v n="$SAMPLES" '{print $3 / (n * $1 / 2)}' "$TMP/rounds" | median)
+PER=$(awk -v n="$SAMPLES" '{print $2 / (n * $1)}' "$TMP/rounds" | median)
+printf 'medians over %d rounds: parallel efficiency t1/(2 t2) = %.1f %%; 1 thread per run against a single run = %.2f;\n' \
+  "$ROUNDS" "$(echo "100 * $EFF" | bc -l)" "$PER"
+printf '2 threads against %d single runs / 2 = %.3f (goal <= 1.2)\n' "$SAMPLES" "$GOAL"

@@ -86,9 +86,12 @@ fn the_runs_are_stratified_and_the_percentiles_are_the_runs() {
         strata.sort();
         assert_eq!(strata, (0..8).collect::<Vec<_>>());
         // triangular(6.8, 7, 7.4): CDF (x−a)²/((b−a)(c−a)) below the mode, 1 − (b−x)²/((b−a)(b−c)) above.
-        let cdf = |x: f64| if x <= 7.0 { (x - 6.8).powi(2) / (0.6 * 0.2) } else { 1.0 - (7.4 - x).powi(2) / (0.6 * 0.4) };
-        let mut strata: Vec<usize> =
-            runs.iter().map(|c| (cdf(c["values"]["drive.duration_s"].as_f64().unwrap()) * 8.0).floor() as usize).collect();
+        let cdf =
+            |x: f64| if x <= 7.0 { (x - 6.8).powi(2) / (0.6 * 0.2) } else { 1.0 - (7.4 - x).powi(2) / (0.6 * 0.4) };
+        let mut strata: Vec<usize> = runs
+            .iter()
+            .map(|c| (cdf(c["values"]["drive.duration_s"].as_f64().unwrap()) * 8.0).floor() as usize)
+            .collect();
         strata.sort();
         assert_eq!(strata, (0..8).collect::<Vec<_>>());
         let mut peaks: Vec<f64> =
@@ -126,4 +129,28 @@ fn bad_spreads_name_the_argument_and_write_nothing() {
     assert!(e.contains("give bounds") && e.contains("normal:MEAN,SD,A..B"), "{e}");
     let e = error_of(&SPREADS, 1, "one-sample");
     assert!(e.contains("--samples 1") && e.contains("2 or more"), "{e}");
+}
+
+/// A design's limit on a figure the summary does not have fails before any search, naming it.
+#[test]
+fn a_design_limit_on_an_unknown_figure_names_it() {
+    use pipearm::design::{Request as DesignRequest, Robustness, design};
+    let request = DesignRequest {
+        scenario: scenario(),
+        limits: vec!["peak_forc_n<=2000".parse().unwrap()],
+        minimize: "drive.duration_s".into(),
+        over: vec!["drive.duration_s=8..20".parse().unwrap()],
+        robustness: Robustness::Nominal,
+        tolerance: 0.01,
+        budget: 20,
+        threads: Some(1),
+    };
+    let e = design(&request).unwrap_err().to_string();
+    assert!(e.contains("`peak_forc_n` is not a figure") && e.contains("residual.amplitude_m"), "{e}");
+    for bad in ["x<2", "x<=abc", "<=3"] {
+        assert!(bad.parse::<pipearm::design::Limit>().is_err(), "{bad}");
+    }
+    for bad in ["x=3..1", "x=1", "x=a..b"] {
+        assert!(bad.parse::<pipearm::design::Over>().is_err(), "{bad}");
+    }
 }

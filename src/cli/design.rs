@@ -71,16 +71,28 @@ pub fn design_command(args: DesignArgs) -> Result<()> {
     let threads = args.threads.map(|n| n as usize);
     if args.table {
         let table = acceleration_table(&args.scenario, &args.limit, &robustness, args.tolerance, threads)?;
-        println!("largest start/stop acceleration within the limits ({} runs per candidate):", table.runs_per_candidate);
+        println!(
+            "largest start/stop acceleration within the limits ({} runs per candidate):",
+            table.runs_per_candidate
+        );
         let names: Vec<String> = table.limits.iter().map(show_limit).collect();
-        println!("{:>12} {:>7} {:>18} {:>9}  {}  {:>10}", "profile", "shaper", "accel deg/s^2", "ramp", names.join("  "), "candidates");
+        println!(
+            "{:>12} {:>7} {:>18} {:>9}  {}  {:>10}",
+            "profile",
+            "shaper",
+            "accel deg/s^2",
+            "ramp",
+            names.join("  "),
+            "candidates"
+        );
         for row in &table.rows {
             let accel = match row.largest_accel_deg_s2 {
                 Some(a) if row.at_least => format!(">= {a:.2}"),
                 Some(a) => format!("{a:.2}"),
                 None => "none".into(),
             };
-            let figures: Vec<String> = row.figures.iter().zip(&names).map(|(f, n)| format!("{f:>w$.4e}", w = n.len())).collect();
+            let figures: Vec<String> =
+                row.figures.iter().zip(&names).map(|(f, n)| format!("{f:>w$.4e}", w = n.len())).collect();
             println!(
                 "{:>12} {:>7} {:>18} {:>9} {}  {:>10}",
                 row.profile,

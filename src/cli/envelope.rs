@@ -110,7 +110,10 @@ fn print(merged: &Merged) -> Result<()> {
 
 fn print_envelope(envelope: &Envelope) {
     println!("{}: {} runs per group, seed {}", envelope.scenario, envelope.runs_per_group, envelope.seed);
-    println!("{:>10} {:>9} {:>5}  {:>9} {:>9} {:>9} {:>9}  {:>12} {:>12}", "group", "weight N", "div", "F p50 N", "F p95 N", "F p99 N", "F max N", "resid p95 mm", "resid max mm");
+    println!(
+        "{:>10} {:>9} {:>5}  {:>9} {:>9} {:>9} {:>9}  {:>12} {:>12}",
+        "group", "weight N", "div", "F p50 N", "F p95 N", "F p99 N", "F max N", "resid p95 mm", "resid max mm"
+    );
     for g in &envelope.groups {
         let (f, r) = (g.peak_force_n, g.residual_amplitude_m);
         println!(
@@ -128,16 +131,23 @@ fn print_envelope(envelope: &Envelope) {
     }
     for g in &envelope.groups {
         for s in &g.sensitivity {
+            let show =
+                |i: &pipearm::envelope::sensitivity::Index| format!("{:.2} [{:.2}, {:.2}]", i.estimate, i.low, i.high);
             let ranking: Vec<String> = s
                 .ranking
                 .iter()
-                .map(|k| {
-                    let index = k.total.as_ref().or(k.coefficient.as_ref()).expect("a measure");
-                    format!("{} {:.2} [{:.2}, {:.2}]", k.key, index.estimate, index.low, index.high)
+                .map(|k| match (&k.first, &k.total, &k.coefficient) {
+                    (Some(first), Some(total), _) => format!("{} total {}, first {}", k.key, show(total), show(first)),
+                    (_, _, Some(c)) => format!("{} {}", k.key, show(c)),
+                    _ => k.key.clone(),
                 })
                 .collect();
+            let method = match s.r_squared {
+                Some(r2) => format!("{}, R² {r2:.2}", s.method),
+                None => s.method.to_string(),
+            };
             let what = s.not_estimated.clone().unwrap_or_else(|| ranking.join("; "));
-            println!("sensitivity of {} ({}, {}): {what}", s.figure, g.per.as_deref().unwrap_or("all"), s.method);
+            println!("sensitivity of {} ({}, {method}): {what}", s.figure, g.per.as_deref().unwrap_or("all"));
         }
     }
 }

@@ -33,8 +33,10 @@ pub enum DesignError {
     #[error("{0}")]
     Argument(String),
     /// A limit or objective on a figure the run's summary does not have.
-    #[error("`{figure}` is not a figure of the run's summary; allowed peak_force_n (the largest pair's) or a \
-             dotted path of the summary such as {examples}")]
+    #[error(
+        "`{figure}` is not a figure of the run's summary; allowed peak_force_n (the largest pair's) or a \
+             dotted path of the summary such as {examples}"
+    )]
     Figure { figure: String, examples: String },
     /// The spreads or the base scenario.
     #[error(transparent)]
@@ -65,7 +67,8 @@ impl std::str::FromStr for Limit {
     type Err = DesignError;
 
     fn from_str(text: &str) -> Result<Self, DesignError> {
-        let bad = || DesignError::Argument(format!("--limit `{text}`: allowed KEY<=VALUE or KEY>=VALUE, VALUE a number"));
+        let bad =
+            || DesignError::Argument(format!("--limit `{text}`: allowed KEY<=VALUE or KEY>=VALUE, VALUE a number"));
         let (figure, bound, upper) = match (text.split_once("<="), text.split_once(">=")) {
             (Some((f, v)), None) => (f, v, true),
             (None, Some((f, v))) => (f, v, false),
@@ -153,10 +156,10 @@ impl Evaluator {
         };
         let all_keys = keys.iter().chain(draws.first().into_iter().flatten().map(|(k, _)| k));
         if all_keys.into_iter().any(|k| k.starts_with("arm.damping_ratios.")) {
-            let spec = document.clone().try_into().map_err(|e: toml::de::Error| ScenarioError::Parse {
-                path: path.into(),
-                message: e.to_string(),
-            })?;
+            let spec = document
+                .clone()
+                .try_into()
+                .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
             explicit_damping_ratios(&mut document, &Scenario::load_robot(path, &spec)?);
         }
         let pool = rayon::ThreadPoolBuilder::new()
@@ -183,19 +186,27 @@ impl Evaluator {
 
     /// Runs the draws at `x`; `Err` with why the candidate's scenario is not valid.
     fn runs(&self, x: &[f64]) -> Result<Runs, String> {
-        let scenarios: Vec<Scenario> = self
-            .draws
-            .iter()
-            .map(|draw| {
-                let mut document = self.document.clone();
-                let values = self.keys.iter().cloned().zip(x.iter().map(|v| toml::Value::Float(*v))).chain(draw.iter().cloned());
-                for (key, value) in values {
-                    set_key(&mut document, &key, value).map_err(|m| format!("`{key}`: {m}"))?;
-                }
-                let spec = document.try_into().map_err(|e: toml::de::Error| e.to_string())?;
-                Scenario::from_spec(&self.path, spec).map_err(|e| e.to_string())
-            })
-            .collect::<Result<_, String>>()?;
+        // Built on the workers too: a scenario's checks (its beam, modes and path) cost about
+        // as much as a short run.
+        let scenarios: Vec<Scenario> = self.pool.install(|| {
+            self.draws
+                .par_iter()
+                .map(|draw| {
+                    let mut document = self.document.clone();
+                    let values = self
+                        .keys
+                        .iter()
+                        .cloned()
+                        .zip(x.iter().map(|v| toml::Value::Float(*v)))
+                        .chain(draw.iter().cloned());
+                    for (key, value) in values {
+                        set_key(&mut document, &key, value).map_err(|m| format!("`{key}`: {m}"))?;
+                    }
+                    let spec = document.try_into().map_err(|e: toml::de::Error| e.to_string())?;
+                    Scenario::from_spec(&self.path, spec).map_err(|e| e.to_string())
+                })
+                .collect::<Result<_, String>>()
+        })?;
         let results: Vec<Option<Row>> = self.pool.install(|| {
             scenarios
                 .par_iter()
@@ -255,13 +266,20 @@ impl Evaluator {
 
     /// Checks that every limit's and the objective's figure is in the summary of a run at `x`.
     pub fn check_figures(&self, x: &[f64], objective: &Objective) -> Result<(), DesignError> {
-        let runs = self.runs(x).map_err(|m| DesignError::Argument(format!("the scenario at the search's first point: {m}")))?;
+        let runs = self
+            .runs(x)
+            .map_err(|m| DesignError::Argument(format!("the scenario at the search's first point: {m}")))?;
         let Some(row) = runs.rows.first() else { return Ok(()) };
         let objective_figure = match objective {
             Objective::Figure(f) => Some(f.as_str()),
             Objective::Coordinate(_) => None,
         };
-        let figures = self.limits.iter().map(|l| l.figure.as_str()).chain(objective_figure).chain(self.reported.iter().map(String::as_str));
+        let figures = self
+            .limits
+            .iter()
+            .map(|l| l.figure.as_str())
+            .chain(objective_figure)
+            .chain(self.reported.iter().map(String::as_str));
         for figure in figures {
             if figure_of(row, figure).is_none() {
                 let examples = row
@@ -269,7 +287,16 @@ impl Evaluator {
                     .iter()
                     .filter(|(_, v)| v.is_number())
                     .map(|(k, _)| k.as_str())
-                    .filter(|k| ["pairs.0.peak_force_n", "residual.amplitude_m", "max_tip_deflection_m", "actuator.peak_pressure_pa", "peak_drive_torque_n_m"].contains(k))
+                    .filter(|k| {
+                        [
+                            "pairs.0.peak_force_n",
+                            "residual.amplitude_m",
+                            "max_tip_deflection_m",
+                            "actuator.peak_pressure_pa",
+                            "peak_drive_torque_n_m",
+                        ]
+                        .contains(k)
+                    })
                     .collect::<Vec<_>>()
                     .join(", ");
                 return Err(DesignError::Figure { figure: figure.into(), examples });
@@ -363,7 +390,14 @@ pub fn design(request: &Request) -> Result<Design, DesignError> {
         Some(i) => Objective::Coordinate(i),
         None => Objective::Figure(request.minimize.clone()),
     };
-    let evaluator = Evaluator::new(&request.scenario, keys.clone(), request.limits.clone(), Vec::new(), &request.robustness, request.threads)?;
+    let evaluator = Evaluator::new(
+        &request.scenario,
+        keys.clone(),
+        request.limits.clone(),
+        Vec::new(),
+        &request.robustness,
+        request.threads,
+    )?;
     for over in &request.over {
         if evaluator.base_number(&over.key).is_none() && !over.key.starts_with("drive.") {
             return Err(DesignError::Argument(format!(

@@ -79,9 +79,8 @@ fn best_feasible(history: &[Evaluation]) -> Option<Evaluation> {
 /// to the lowest feasible grid point.
 fn bracket(problem: &Problem) -> Outcome {
     let (lo, hi) = problem.bounds[0];
-    let mut history: Vec<Evaluation> = (0..GRID_1D)
-        .map(|i| (problem.evaluate)(&[lo + (hi - lo) * i as f64 / (GRID_1D - 1) as f64]))
-        .collect();
+    let mut history: Vec<Evaluation> =
+        (0..GRID_1D).map(|i| (problem.evaluate)(&[lo + (hi - lo) * i as f64 / (GRID_1D - 1) as f64])).collect();
     // The highest infeasible grid point: the answer is above it, so that every grid point above
     // the answer passes too (a limit that passes again below a failing point is not trusted).
     let Some(i) = history.iter().rposition(|e| !e.feasible) else {
@@ -94,7 +93,11 @@ fn bracket(problem: &Problem) -> Outcome {
     while (good - bad).abs() > problem.tolerance * (hi - lo) && history.len() < problem.budget {
         let mid = 0.5 * (bad + good);
         let e = (problem.evaluate)(&[mid]);
-        if e.feasible { good = mid } else { bad = mid }
+        if e.feasible {
+            good = mid
+        } else {
+            bad = mid
+        }
         history.push(e);
     }
     let above: Vec<Evaluation> = history.iter().filter(|e| e.x[0] > bad).cloned().collect();
@@ -166,9 +169,7 @@ fn nelder_mead(problem: &Problem) -> Outcome {
         .collect();
     let searched = std::sync::Mutex::new(Vec::new());
     let cost = Penalised { problem, scale, history: &searched };
-    let solver = NelderMead::new(simplex)
-        .with_sd_tolerance(1e-9 * scale.max(1.0))
-        .expect("a positive tolerance");
+    let solver = NelderMead::new(simplex).with_sd_tolerance(1e-9 * scale.max(1.0)).expect("a positive tolerance");
     let iterations = (problem.budget.saturating_sub(history.len())) as u64;
     // A failed run of the solver leaves the evaluations it made, which are all the answer needs.
     let _ = Executor::new(cost, solver).configure(|s| s.max_iters(iterations)).run();
@@ -196,8 +197,13 @@ mod tests {
     #[test]
     fn bracketing_finds_the_boundary_of_a_monotone_limit() {
         let evaluate = |x: &[f64]| evaluation(x, x[0], &[(1.0 / x[0], 0.25)]);
-        let problem =
-            Problem { bounds: vec![(1.0, 10.0)], objective_coordinate: Some(0), tolerance: 1e-4, budget: 50, evaluate: &evaluate };
+        let problem = Problem {
+            bounds: vec![(1.0, 10.0)],
+            objective_coordinate: Some(0),
+            tolerance: 1e-4,
+            budget: 50,
+            evaluate: &evaluate,
+        };
         let outcome = minimize(&problem);
         let best = outcome.best.unwrap();
         assert!((best.x[0] - 4.0).abs() < 1e-3 && best.feasible, "{best:?}");
@@ -208,8 +214,7 @@ mod tests {
     /// of (2, 1) on the line, (1.5, 0.5), with objective 0.5.
     #[test]
     fn nelder_mead_finds_the_constrained_optimum_on_its_boundary() {
-        let evaluate =
-            |x: &[f64]| evaluation(x, (x[0] - 2.0).powi(2) + (x[1] - 1.0).powi(2), &[(x[0] + x[1], 2.0)]);
+        let evaluate = |x: &[f64]| evaluation(x, (x[0] - 2.0).powi(2) + (x[1] - 1.0).powi(2), &[(x[0] + x[1], 2.0)]);
         let problem = Problem {
             bounds: vec![(0.0, 3.0), (0.0, 3.0)],
             objective_coordinate: None,
@@ -226,8 +231,13 @@ mod tests {
     #[test]
     fn an_infeasible_box_gives_no_answer() {
         let evaluate = |x: &[f64]| evaluation(x, x[0], &[(x[0], -1.0)]);
-        let problem =
-            Problem { bounds: vec![(0.0, 1.0)], objective_coordinate: Some(0), tolerance: 1e-3, budget: 20, evaluate: &evaluate };
+        let problem = Problem {
+            bounds: vec![(0.0, 1.0)],
+            objective_coordinate: Some(0),
+            tolerance: 1e-3,
+            budget: 20,
+            evaluate: &evaluate,
+        };
         let outcome = minimize(&problem);
         assert!(outcome.best.is_none() && outcome.history.len() == GRID_1D);
     }

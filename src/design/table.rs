@@ -24,8 +24,13 @@ pub const MIN_RAMP_FRACTION: f64 = 0.02;
 pub const S_CURVE_JERK_FRACTION: f64 = 0.25;
 
 /// The profiles of the table: (profile, shaper).
-pub const PROFILES: [(&str, Option<&str>); 5] =
-    [("trapezoidal", None), ("s-curve", None), ("trapezoidal", Some("zv")), ("trapezoidal", Some("zvd")), ("trapezoidal", Some("ei"))];
+pub const PROFILES: [(&str, Option<&str>); 5] = [
+    ("trapezoidal", None),
+    ("s-curve", None),
+    ("trapezoidal", Some("zv")),
+    ("trapezoidal", Some("zvd")),
+    ("trapezoidal", Some("ei")),
+];
 
 /// One row of the table.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -179,7 +179,11 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
         if get_number(&document, &spread.key).is_none() {
             return Err(EnvelopeError::Spread {
                 spread: spread.to_string(),
-                message: format!("`{}` is not a number in {}: allowed numeric scenario keys", spread.key, path.display()),
+                message: format!(
+                    "`{}` is not a number in {}: allowed numeric scenario keys",
+                    spread.key,
+                    path.display()
+                ),
             });
         }
         check_support(path, &document, spread)?;

@@ -14,9 +14,8 @@ pub fn force_vs_weight(path: &Path, caption: &str, groups: &[GroupEnvelope]) -> 
     let err = |e: &dyn std::fmt::Display| EnvelopeError::Chart { path: path.into(), message: e.to_string() };
     let mut points: Vec<&GroupEnvelope> = groups.iter().filter(|g| g.peak_force_n.max.is_finite()).collect();
     points.sort_by(|a, b| a.weight_n.total_cmp(&b.weight_n));
-    let (w_lo, w_hi) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| {
-        (lo.min(g.weight_n), hi.max(g.weight_n))
-    });
+    let (w_lo, w_hi) =
+        points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), g| (lo.min(g.weight_n), hi.max(g.weight_n)));
     let (x_lo, x_hi) = if w_lo.is_finite() {
         let margin = 0.08 * (w_hi - w_lo).max(0.2 * w_hi.abs()).max(1.0);
         (w_lo - margin, w_hi + margin)

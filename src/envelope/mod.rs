@@ -135,20 +135,23 @@ pub use crate::sweep::Progress;
 /// shard's runs that are not current, and merges if the shard is the whole envelope.
 pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, EnvelopeError> {
     check_spreads(&request.scenario, &request.spreads, request.per.as_ref())?;
-    let sampling =
-        Sampling::new(&request.spreads, request.samples, request.seed, request.method, request.per.clone())?;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(request.threads.unwrap_or(0))
-        .build()
-        .map_err(SweepError::from)?;
+    let sampling = Sampling::new(&request.spreads, request.samples, request.seed, request.method, request.per.clone())?;
+    let pool =
+        rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build().map_err(SweepError::from)?;
     let vary = sampling.vary(&request.spreads);
     let rows = sampling.case_rows(&request.spreads);
     let (plan, scenarios) = pool.install(|| Plan::build_cases(&request.scenario, vary, rows))?;
     let work = prepare(&plan, &request.out, request.shard)?;
     let json = serde_json::to_string_pretty(&sampling).expect("a sampling serialises") + "\n";
-    crate::sweep::write_atomic(&request.out.join(SAMPLING_FILE), json.as_bytes(), &format!("shard{}", request.shard.index))?;
+    crate::sweep::write_atomic(
+        &request.out.join(SAMPLING_FILE),
+        json.as_bytes(),
+        &format!("shard{}", request.shard.index),
+    )?;
     progress(Progress::Start { todo: work.todo.len() });
-    run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| progress(Progress::Done { index: case.index }))?;
+    run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| {
+        progress(Progress::Done { index: case.index })
+    })?;
     let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };
     Ok(Report { cases: plan.cases.len(), ran: work.todo.len(), current: work.current, sampling, merged })
 }
@@ -160,8 +163,10 @@ pub const SAMPLING_FILE: &str = "sampling.json";
 pub fn merge(dir: &Path) -> Result<Merged, EnvelopeError> {
     let sampling_path = dir.join(SAMPLING_FILE);
     let text = std::fs::read_to_string(&sampling_path).map_err(crate::sweep::io_error(&sampling_path))?;
-    let sampling: Sampling = serde_json::from_str(&text)
-        .map_err(|e| SweepError::Format { path: sampling_path.clone(), message: format!("not an envelope's sampling: {e}") })?;
+    let sampling: Sampling = serde_json::from_str(&text).map_err(|e| SweepError::Format {
+        path: sampling_path.clone(),
+        message: format!("not an envelope's sampling: {e}"),
+    })?;
     let spreads = sampling.parsed_spreads()?;
     let (plan, rows) = read_results(dir)?;
     let envelope = figures(&sampling, &spreads, &plan, &rows)?;
@@ -182,7 +187,8 @@ fn figures(sampling: &Sampling, spreads: &[Spread], plan: &Plan, rows: &[Row]) -
         .iter()
         .map(|c| spreads.iter().map(|s| c.values.get(&s.key).and_then(|v| v.as_float()).unwrap_or(f64::NAN)).collect())
         .collect();
-    let scenario = rows.first().and_then(|r| r.get("summary.scenario")).map(crate::sweep::row::cell).unwrap_or_default();
+    let scenario =
+        rows.first().and_then(|r| r.get("summary.scenario")).map(crate::sweep::row::cell).unwrap_or_default();
     let groups = groups
         .iter()
         .enumerate()
@@ -203,14 +209,18 @@ fn figures(sampling: &Sampling, spreads: &[Spread], plan: &Plan, rows: &[Row]) -
 }
 
 fn write(dir: &Path, plan: &Plan, rows: &[Row], envelope: &Envelope) -> Result<Vec<PathBuf>, EnvelopeError> {
-    let files: Vec<PathBuf> =
-        ["envelope.json", "envelope.csv", "results.json", "results.csv", "force_vs_weight.svg"].map(|f| dir.join(f)).into();
+    let files: Vec<PathBuf> = ["envelope.json", "envelope.csv", "results.json", "results.csv", "force_vs_weight.svg"]
+        .map(|f| dir.join(f))
+        .into();
     let json = serde_json::to_string_pretty(envelope).expect("an envelope serialises") + "\n";
     crate::sweep::write_atomic(&files[0], json.as_bytes(), "merge")?;
     crate::sweep::write_atomic(&files[1], table(envelope).as_bytes(), "merge")?;
     crate::sweep::write_atomic(&files[2], crate::sweep::table::json(rows).as_bytes(), "merge")?;
     crate::sweep::write_atomic(&files[3], crate::sweep::table::csv(plan, rows).as_bytes(), "merge")?;
-    let caption = format!("{}: peak contact force against string weight, {} runs each", envelope.scenario, envelope.runs_per_group);
+    let caption = format!(
+        "{}: peak contact force against string weight, {} runs each",
+        envelope.scenario, envelope.runs_per_group
+    );
     chart::force_vs_weight(&files[4], &caption, &envelope.groups)?;
     Ok(files)
 }
@@ -219,10 +229,11 @@ fn write(dir: &Path, plan: &Plan, rows: &[Row], envelope: &Envelope) -> Result<V
 fn table(envelope: &Envelope) -> String {
     let mut out = String::from("group,weight_n,runs,diverged,figure,p5,p50,p95,p99,max\n");
     for g in &envelope.groups {
-        let figures = [("peak_force_n".to_string(), g.peak_force_n), ("peak_force_per_weight".into(), g.peak_force_per_weight)]
-            .into_iter()
-            .chain(g.pairs.iter().map(|p| (format!("{}.peak_force_n", p.pair), p.peak_force_n)))
-            .chain([("residual_amplitude_m".to_string(), g.residual_amplitude_m)]);
+        let figures =
+            [("peak_force_n".to_string(), g.peak_force_n), ("peak_force_per_weight".into(), g.peak_force_per_weight)]
+                .into_iter()
+                .chain(g.pairs.iter().map(|p| (format!("{}.peak_force_n", p.pair), p.peak_force_n)))
+                .chain([("residual_amplitude_m".to_string(), g.residual_amplitude_m)]);
         for (figure, p) in figures {
             out += &format!(
                 "{},{},{},{},{figure},{},{},{},{},{}\n",

@@ -148,7 +148,8 @@ pub fn group_envelope(
     let payload_kg = Percentiles::of(&ran.iter().map(|r| r.payload_kg).collect::<Vec<_>>()).p50;
     let weight_n = payload_kg * STANDARD_GRAVITY_M_S2;
     let peaks: Vec<f64> = ran.iter().map(|r| r.peak_force_n()).filter(|f| f.is_finite()).collect();
-    let pair_names: Vec<String> = ran.first().map(|r| r.pairs.iter().map(|p| p.0.clone()).collect()).unwrap_or_default();
+    let pair_names: Vec<String> =
+        ran.first().map(|r| r.pairs.iter().map(|p| p.0.clone()).collect()).unwrap_or_default();
     let pairs = pair_names
         .iter()
         .enumerate()
@@ -158,7 +159,8 @@ pub fn group_envelope(
         })
         .collect();
     let per_weight: Vec<f64> = ran.iter().map(|r| r.peak_force_n() / (r.payload_kg * STANDARD_GRAVITY_M_S2)).collect();
-    let figure = |f: &dyn Fn(&RunFigures) -> f64| -> Option<Vec<f64>> { runs.iter().map(|r| r.as_ref().map(f)).collect() };
+    let figure =
+        |f: &dyn Fn(&RunFigures) -> f64| -> Option<Vec<f64>> { runs.iter().map(|r| r.as_ref().map(f)).collect() };
     let keys: Vec<String> = spreads.iter().map(|s| s.key.clone()).collect();
     let sensitivity = vec![
         sensitivity("peak_force_n", sampling, &keys, values, figure(&|r| r.peak_force_n())),
