@@ -73,6 +73,21 @@ fn coupled_hz(fidelity: Fidelity, band_hz: f64) -> Vec<f64> {
 fn three_modes_with_the_pin_residual_give_the_fe_arms_coupled_frequencies() {
     // The cylinder props the arm at its pin, 2 m from the pivot. The full FE arm (no truncation,
     // no residual) is the reference; up to the shipped scene's impact band, 70 Hz.
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let m = Scenario::load(&path).unwrap().model;
+    let pipearm::actuator::Actuator::Hydraulic(h) = &m.drive.actuator else { panic!("not hydraulic") };
+    let pin = m.arm_model(Fidelity::Modal { modes: 3 }).unwrap().pin_coupling(h.cylinder.arm_pin_m).unwrap();
+    let end = m.drive.motion.end_rad();
+    let [px, py] = h.cylinder.arm_pin_at_m(end);
+    let d = [px - h.cylinder.base_pin_m[0], py - h.cylinder.base_pin_m[1]];
+    let (s, c, l) = (end.sin(), end.cos(), d[0].hypot(d[1]));
+    let along = pin.flexibility_along_m_per_n([(c * d[0] + s * d[1]) / l, (-s * d[0] + c * d[1]) / l]);
+    let column = h.cylinder.oil_stiffness_n_m(h.circuit.bulk_modulus_pa, l);
+    println!(
+        "modal(3) residual at the pin {:.3e} m/N, {along:.3e} along the rod at the end; oil column 1/k {:.3e} m/N",
+        pin.residual_flexibility_m_per_n[1][1],
+        1.0 / column
+    );
     let fe = coupled_hz(Fidelity::Fe, 70.0);
     let modal = coupled_hz(Fidelity::Modal { modes: 3 }, 80.0);
     println!("coupled frequencies: fe {fe:.2?} Hz, modal(3) {modal:.2?} Hz");

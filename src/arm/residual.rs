@@ -12,6 +12,7 @@ use nalgebra::DVector;
 
 use super::{ArmError, ArmModel, Fidelity};
 use crate::actuator::PinCoupling;
+use crate::beam::BeamError;
 
 impl ArmModel {
     /// A cylinder's arm pin at (x, y) in the hub frame (m; y across the arm, joined to the
@@ -35,7 +36,11 @@ impl ArmModel {
         if !matches!(self.fidelity, Fidelity::Modal { .. }) {
             return Ok([[0.0; 2]; 2]);
         }
-        let static_full = [self.beam.static_displacement(&full[0])?, self.beam.static_displacement(&full[1])?];
+        let clamped = self.beam.stiffness.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
+            matrix: "stiffness",
+            why: "the clamped arm must be a structure".into(),
+        })?;
+        let static_full = full.each_ref().map(|r| clamped.solve(r));
         let k = self.stiffness.clone().cholesky().ok_or(ArmError::InvalidParameter {
             name: "stiffness".into(),
             value: f64::NAN,
