@@ -17,8 +17,9 @@
 //!   - under a servo or hydraulic drive the arm's frequencies are not its clamped ones: the
 //!     count is the fewest clamped modes with which the arm and its drive, linearised at rest at
 //!     the end of the path, reproduce within 2 % every coupled frequency in that band of a
-//!     12-mode model (a cylinder props the arm at its pin, and the clamped modes reproduce a
-//!     propped arm's frequencies only slowly: 9 modes on the shipped arm, docs/drives.md).
+//!     12-mode model (a cylinder props the arm at its pin; with the flexibility the truncated
+//!     modes leave there added back as a spring in series with the oil column, three modes do
+//!     on the shipped arm, as under a servo: docs/drives.md).
 //! - **fe** never by default: it is the reference.
 //!
 //! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.

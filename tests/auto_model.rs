@@ -1,6 +1,5 @@
 //! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
-//! contact force and peak tip deflection, and no cheaper fidelity is (under a hydraulic cylinder,
-//! where auto's rule on the coupled frequencies is conservative, only the first).
+//! contact force and peak tip deflection, and no cheaper fidelity is.
 
 use std::path::{Path, PathBuf};
 
@@ -39,11 +38,6 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
         let name = &s.name;
         println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));
         assert!(off(&auto, &fe) <= 0.02, "{name}: {chosen} is {} from fe", off(&auto, &fe));
-        // Under a cylinder auto asks the arm's coupled frequencies to 2 %, which the peak force
-        // may not need: held to fe, not to the cheapest (docs/drives.md).
-        if matches!(s.drive.actuator, pipearm::actuator::Actuator::Hydraulic(_)) {
-            continue;
-        }
         let cheaper: Vec<Fidelity> = match chosen {
             Fidelity::Rigid => vec![],
             Fidelity::Modal { modes } => {

@@ -27,7 +27,7 @@ mod summary;
 
 pub use controller::{Controller, ControllerGains};
 pub use hydraulic::{Cylinder, HydraulicCircuit, HydraulicDrive, Valve};
-pub use plant::{ActuatorOutputs, ActuatorPlant, Stroke};
+pub use plant::{ActuatorOutputs, ActuatorPlant, PinCoupling, Stroke};
 pub use servo::{ServoDrive, ServoMachine};
 pub use summary::ActuatorSummary;
 

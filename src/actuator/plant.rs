@@ -40,14 +40,50 @@ pub struct ActuatorPlant {
     pub reference: MotionProfile,
     /// The running controller.
     pub controller: Controller,
-    /// A cylinder's arm pin as rows over the arm's elastic coordinates (hub-frame axial and
-    /// transverse displacement), set by the arm it drives: the rod pushes on the deformed arm.
-    pub arm_pin_rows: Option<[DVector<f64>; 2]>,
+    /// A cylinder's arm pin on the arm it drives, set by that arm: the rod pushes on the
+    /// deformed arm.
+    pub arm_pin: Option<PinCoupling>,
 }
 
-/// The actuator's stroke as the arm's step hands it over: the hub's (θ, θ̇) for a servo, the
-/// cylinder's pin-to-pin (s, ṡ) for a hydraulic drive (rad and rad/s, or m and m/s).
-pub type Stroke = (f64, f64);
+/// A cylinder's arm pin as the arm's model sees it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PinCoupling {
+    /// The pin's hub-frame (axial, transverse) displacement as rows over the elastic coordinates.
+    pub rows: [DVector<f64>; 2],
+    /// The static flexibility at the pin that the elastic coordinates leave out (the truncated
+    /// modes' share), hub frame, m/N: a massless spring in series with the oil column
+    /// (docs/model.md, "The cylinder's pin: residual flexibility").
+    pub residual_flexibility_m_per_n: [[f64; 2]; 2],
+}
+
+impl PinCoupling {
+    /// The residual flexibility along a hub-frame unit vector `unit` (the rod's), m/N.
+    pub fn flexibility_along_m_per_n(&self, unit: [f64; 2]) -> f64 {
+        let c = &self.residual_flexibility_m_per_n;
+        unit[0] * (c[0][0] * unit[0] + c[0][1] * unit[1]) + unit[1] * (c[1][0] * unit[0] + c[1][1] * unit[1])
+    }
+}
+
+/// The actuator's stroke as the arm's step hands it over: the hub's (θ, θ̇) for a servo; for a
+/// hydraulic drive the pin-to-pin length and rate the arm's coordinates give (m, m/s), and the
+/// residual flexibility in series with the rod (m/N), which lengthens the cylinder by its
+/// flexibility times the rod's pressure force.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Stroke {
+    /// Hub angle (rad), or the pin-to-pin length the arm's coordinates give (m).
+    pub position: f64,
+    /// Its rate, rad/s or m/s.
+    pub rate: f64,
+    /// Flexibility in series with the rod, m/N (0 for a servo).
+    pub series_flexibility_m_per_n: f64,
+}
+
+impl Stroke {
+    /// A stroke with no series flexibility.
+    pub fn rigid(position: f64, rate: f64) -> Self {
+        Stroke { position, rate, series_flexibility_m_per_n: 0.0 }
+    }
+}
 
 impl ActuatorPlant {
     /// A plant for `actuator` (servo or hydraulic) tracking `reference`, its controller sampling
@@ -59,12 +95,7 @@ impl ActuatorPlant {
             Actuator::Servo(s) => s.machine.hub_torque_limit_n_m(),
             _ => 1.0,
         };
-        Some(ActuatorPlant {
-            actuator,
-            reference,
-            controller: Controller::new(gains, period_s, limit),
-            arm_pin_rows: None,
-        })
+        Some(ActuatorPlant { actuator, reference, controller: Controller::new(gains, period_s, limit), arm_pin: None })
     }
 
     /// Second-order coordinates it adds (the servo's motor angle).
@@ -95,7 +126,7 @@ impl ActuatorPlant {
     pub fn load(&self, stroke: Stroke, x: &[f64], v: &[f64]) -> f64 {
         match &self.actuator {
             Actuator::Ideal => 0.0,
-            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), stroke),
+            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), (stroke.position, stroke.rate)),
             Actuator::Hydraulic(h) => rod_force_n(h, stroke, v),
         }
     }
@@ -105,7 +136,10 @@ impl ActuatorPlant {
     pub fn forces(&self, stroke: Stroke, x: &[f64], v: &[f64], f: &mut [f64]) {
         match &self.actuator {
             Actuator::Ideal => {}
-            Actuator::Servo(s) => f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), stroke),
+            Actuator::Servo(s) => {
+                f[0] =
+                    self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), (stroke.position, stroke.rate))
+            }
             Actuator::Hydraulic(h) => hydraulic_rates(h, stroke, self.controller.output, v, f),
         }
     }
@@ -218,30 +252,72 @@ impl ActuatorPlant {
             let ps = h.circuit.supply_pressure_pa;
             out.rod_force_n = Some(rod_force_n(h, stroke, v));
             out.pressures_pa = Some([v[0] * ps, v[1] * ps]);
-            out.cylinder_length_m = Some(stroke.0);
+            out.cylinder_length_m = Some(stroke.position + stroke.series_flexibility_m_per_n * pressure_force_n(h, v));
         }
         out
     }
 }
 
-/// Rod force (N) at (length, rate) `stroke` and scaled pressures `v[0..2]`.
-fn rod_force_n(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> f64 {
-    let ps = h.circuit.supply_pressure_pa;
+/// The rod's force from the chamber pressures, scaled `v[0..2]`, N.
+fn pressure_force_n(h: &HydraulicDrive, v: &[f64]) -> f64 {
     let c = &h.cylinder;
-    ps * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2()) + c.end_stop_force_n(stroke.0, stroke.1)
+    h.circuit.supply_pressure_pa * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2())
+}
+
+/// Rod force (N) at `stroke` with scaled pressures `v[0..2]` and the spool `v[2]`: the pressures'
+/// force and, past the stroke, the end cap's.
+fn rod_force_n(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> f64 {
+    let c = &h.cylinder;
+    let force = pressure_force_n(h, v);
+    let length = stroke.position + stroke.series_flexibility_m_per_n * force;
+    let extension = length - c.closed_length_m;
+    if (0.0..=c.stroke_m).contains(&extension) {
+        return force;
+    }
+    force + c.end_stop_force_n(length, ColumnFlow::at(h, stroke, v).rate_m_s)
+}
+
+/// The oil column under a series flexibility c: the cylinder's length is s + c F_p (F_p the
+/// pressures' force) and its rate ṡ + c Ḟ_p, with Ḟ_p = Ḟ₀ − k ṡ_eff from the chamber equations
+/// (Ḟ₀ the valve's flows' share, k = β (A₁²/V₁ + A₂²/V₂) the oil spring), so
+/// ṡ_eff = (ṡ + c Ḟ₀) / (1 + c k): the column and the flexibility in series.
+struct ColumnFlow {
+    /// Chamber volumes (cap, rod), m³.
+    volumes_m3: (f64, f64),
+    /// Flows into the chambers through the valve, relief included (cap, rod), m³/s.
+    flows_m3_s: [f64; 2],
+    /// The cylinder's rate of extension, m/s.
+    rate_m_s: f64,
+}
+
+impl ColumnFlow {
+    fn at(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> Self {
+        let (c, circuit) = (&h.cylinder, &h.circuit);
+        let ps = circuit.supply_pressure_pa;
+        let flexibility = stroke.series_flexibility_m_per_n;
+        let (v1, v2) = c.volumes_m3(stroke.position + flexibility * pressure_force_n(h, v));
+        let (v1, v2) = (v1.max(1e-9), v2.max(1e-9));
+        let flows = circuit.flows_m3_s(v[2].clamp(-1.0, 1.0), [v[0] * ps, v[1] * ps]);
+        let (a1, a2, beta) = (c.cap_area_m2(), c.rod_area_m2(), circuit.bulk_modulus_pa);
+        let rate_m_s = if flexibility > 0.0 {
+            let force_rate = beta * (a1 * flows[0] / v1 - a2 * flows[1] / v2);
+            let column = beta * (a1 * a1 / v1 + a2 * a2 / v2);
+            (stroke.rate + flexibility * force_rate) / (1.0 + flexibility * column)
+        } else {
+            stroke.rate
+        };
+        ColumnFlow { volumes_m3: (v1, v2), flows_m3_s: flows, rate_m_s }
+    }
 }
 
 /// Rates of the scaled pressures and of the spool (module doc of [`super::hydraulic`]).
-fn hydraulic_rates(h: &HydraulicDrive, (length, rate): Stroke, command: f64, v: &[f64], f: &mut [f64]) {
+fn hydraulic_rates(h: &HydraulicDrive, stroke: Stroke, command: f64, v: &[f64], f: &mut [f64]) {
     let (c, circuit) = (&h.cylinder, &h.circuit);
-    let ps = circuit.supply_pressure_pa;
-    let (v1, v2) = c.volumes_m3(length);
-    let spool = v[2];
-    let [q1, q2] = circuit.flows_m3_s(spool.clamp(-1.0, 1.0), [v[0] * ps, v[1] * ps]);
-    let beta = circuit.bulk_modulus_pa / ps;
-    f[0] = beta / v1.max(1e-9) * (q1 - c.cap_area_m2() * rate);
-    f[1] = beta / v2.max(1e-9) * (q2 + c.rod_area_m2() * rate);
-    f[2] = (command - spool) / circuit.valve.spool_time_constant_s;
+    let ColumnFlow { volumes_m3: (v1, v2), flows_m3_s: [q1, q2], rate_m_s } = ColumnFlow::at(h, stroke, v);
+    let beta = circuit.bulk_modulus_pa / circuit.supply_pressure_pa;
+    f[0] = beta / v1 * (q1 - c.cap_area_m2() * rate_m_s);
+    f[1] = beta / v2 * (q2 + c.rod_area_m2() * rate_m_s);
+    f[2] = (command - v[2]) / circuit.valve.spool_time_constant_s;
 }
 
 /// The spool command that feeds the reference forward (module doc of [`super::hydraulic`]).

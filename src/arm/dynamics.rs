@@ -5,7 +5,7 @@ use std::cell::{Cell, RefCell};
 use nalgebra::{DMatrix, DVector};
 
 use super::{ArmContact, ArmModel, Energies};
-use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, Stroke};
+use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, PinCoupling, Stroke};
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -320,14 +320,14 @@ impl ArmSystem<'_> {
 
     /// The actuator's stroke at (x, v), and a cylinder's pin on the deformed arm.
     fn actuator_stroke(&self, plant: &ActuatorPlant, x: &[f64], v: &[f64]) -> (Stroke, Option<ArmPin>) {
-        match (&plant.actuator, &plant.arm_pin_rows) {
-            (Actuator::Hydraulic(h), Some(rows)) => {
+        match (&plant.actuator, &plant.arm_pin) {
+            (Actuator::Hydraulic(h), Some(coupling)) => {
                 let n = self.arm.elastic_dofs();
                 let (q, qd) = (&x[1..1 + n], &v[1..1 + n]);
-                let pin = ArmPin::at(&h.cylinder, rows, (x[0], v[0]), q, qd);
+                let pin = ArmPin::at(&h.cylinder, coupling, (x[0], v[0]), q, qd);
                 (pin.stroke, Some(pin))
             }
-            _ => ((x[0], v[0]), None),
+            _ => (Stroke::rigid(x[0], v[0]), None),
         }
     }
 
@@ -339,8 +339,8 @@ impl ArmSystem<'_> {
         let own = 1 + self.arm.elastic_dofs();
         let (stroke, pin) = self.actuator_stroke(plant, x, v);
         let load = plant.load(stroke, &x[own..], &v[own..]);
-        match (pin, &plant.arm_pin_rows) {
-            (Some(pin), Some(rows)) => {
+        match (pin, &plant.arm_pin) {
+            (Some(pin), Some(PinCoupling { rows, .. })) => {
                 f[0] += load * pin.lever_m;
                 for (i, fi) in f[1..own].iter_mut().enumerate() {
                     *fi += load * (pin.body_unit[0] * rows[0][i] + pin.body_unit[1] * rows[1][i]);
@@ -425,7 +425,7 @@ impl ArmSystem<'_> {
         let Some(plant) = self.drive.plant() else { return };
         let n = x.len();
         let own = 1 + self.arm.elastic_dofs();
-        let read = if plant.arm_pin_rows.is_some() { 0..n } else { 0..1 };
+        let read = if plant.arm_pin.is_some() { 0..n } else { 0..1 };
         let columns: Vec<usize> = read.chain(own..n).collect();
         let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
         let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
@@ -459,7 +459,8 @@ impl ArmSystem<'_> {
 /// A cylinder's arm pin on the deformed arm, and what the rod force does through it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ArmPin {
-    /// Pin-to-pin length and its rate, m and m/s.
+    /// Pin-to-pin length and its rate from the arm's coordinates (m and m/s), and the residual
+    /// flexibility along the rod (m/N).
     pub stroke: Stroke,
     /// Moment about the pivot per newton of rod force, m.
     pub lever_m: f64,
@@ -468,9 +469,10 @@ pub(crate) struct ArmPin {
 }
 
 impl ArmPin {
-    /// The pin of `cylinder` with displacement `rows` over q, the hub at (θ, θ̇) and the arm at
-    /// (q, q̇).
-    pub(crate) fn at(cylinder: &Cylinder, rows: &[DVector<f64>; 2], hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
+    /// The pin of `cylinder` on the arm as `coupling` describes it, the hub at (θ, θ̇) and the
+    /// arm at (q, q̇).
+    pub(crate) fn at(cylinder: &Cylinder, coupling: &PinCoupling, hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
+        let rows = &coupling.rows;
         let [ax, ay] = cylinder.arm_pin_m;
         let body = [ax + dot(&rows[0], q), ay + dot(&rows[1], q)];
         // Hub-frame velocity of the pin: its elastic rate plus the frame's rotation θ̇ k × r.
@@ -481,10 +483,15 @@ impl ArmPin {
         let d = [point[0] - cylinder.base_pin_m[0], point[1] - cylinder.base_pin_m[1]];
         let length = d[0].hypot(d[1]);
         let unit = [d[0] / length, d[1] / length];
+        let body_unit = [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]];
         ArmPin {
-            stroke: (length, unit[0] * velocity[0] + unit[1] * velocity[1]),
+            stroke: Stroke {
+                position: length,
+                rate: unit[0] * velocity[0] + unit[1] * velocity[1],
+                series_flexibility_m_per_n: coupling.flexibility_along_m_per_n(body_unit),
+            },
             lever_m: point[0] * unit[1] - point[1] * unit[0],
-            body_unit: [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]],
+            body_unit,
         }
     }
 }

@@ -24,6 +24,7 @@
 mod contact;
 mod dynamics;
 mod linear;
+mod residual;
 mod sim;
 
 use nalgebra::{DMatrix, DVector};

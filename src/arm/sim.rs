@@ -93,8 +93,7 @@ impl ArmSimulation {
     /// Starts an actuated hub in static equilibrium, its actuator holding it.
     fn held_by(arm: ArmModel, mut plant: Box<ActuatorPlant>, integrator: IntegratorKind) -> Result<Self, ArmError> {
         if let Actuator::Hydraulic(h) = &plant.actuator {
-            let [u, v, slope] = arm.station_rows(h.cylinder.arm_pin_m[0]).0;
-            plant.arm_pin_rows = Some([u - h.cylinder.arm_pin_m[1] * slope, v]);
+            plant.arm_pin = Some(arm.pin_coupling(h.cylinder.arm_pin_m)?);
         }
         let (angle, q0, load) = static_hold(&arm, &plant)?;
         let (own_x, own_v) = plant.holding(angle, load).map_err(|why| ArmError::InvalidParameter {
@@ -436,9 +435,9 @@ fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<(f64, DVector<f6
         q0 = arm.static_deflection_under(angle, &pin_load)?;
         let torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
         load = torque;
-        if let (Actuator::Hydraulic(h), Some(rows)) = (&plant.actuator, &plant.arm_pin_rows) {
-            let zero = vec![0.0; n];
-            let pin = ArmPin::at(&h.cylinder, rows, (angle, 0.0), q0.as_slice(), &zero);
+        if let (Actuator::Hydraulic(h), Some(coupling)) = (&plant.actuator, &plant.arm_pin) {
+            let (zero, rows) = (vec![0.0; n], &coupling.rows);
+            let pin = ArmPin::at(&h.cylinder, coupling, (angle, 0.0), q0.as_slice(), &zero);
             load = torque / pin.lever_m;
             pin_load = load * (pin.body_unit[0] * &rows[0] + pin.body_unit[1] * &rows[1]);
         }
