@@ -9,6 +9,9 @@ use pipearm::design::table::acceleration_table;
 use pipearm::design::{Design, Limit, Over, Request, Robustness, design, write_json};
 use pipearm::envelope::dist::Spread;
 
+/// The table's limit on the residual amplitude where `--limit` sets none, m.
+const DEFAULT_RESIDUAL_LIMIT_M: f64 = 1e-3;
+
 /// `pipearm design` arguments.
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
@@ -42,7 +45,8 @@ pub struct DesignArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// The seed's table instead of a search: per drive profile (trapezoidal, S-curve, each
-    /// shaper), the largest start/stop acceleration within the limits.
+    /// shaper), the largest start/stop acceleration within the limits (residual.amplitude_m <=
+    /// 0.001 unless --limit sets it).
     #[arg(long, conflicts_with_all = ["minimize", "over"])]
     table: bool,
     /// Relative tolerance of the search on each key (of its range).
@@ -70,7 +74,14 @@ pub fn design_command(args: DesignArgs) -> Result<()> {
     }
     let threads = args.threads.map(|n| n as usize);
     if args.table {
-        let table = acceleration_table(&args.scenario, &args.limit, &robustness, args.tolerance, threads)?;
+        let mut limits = args.limit;
+        if !limits.iter().any(|l| l.figure == "residual.amplitude_m") {
+            limits.insert(
+                0,
+                Limit { figure: "residual.amplitude_m".into(), bound: DEFAULT_RESIDUAL_LIMIT_M, upper: true },
+            );
+        }
+        let table = acceleration_table(&args.scenario, &limits, &robustness, args.tolerance, threads)?;
         println!(
             "largest start/stop acceleration within the limits ({} runs per candidate):",
             table.runs_per_candidate

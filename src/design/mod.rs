@@ -154,6 +154,11 @@ impl Evaluator {
                 sampling.case_rows(spreads)
             }
         };
+        if let Some(key) = draws.first().into_iter().flatten().map(|(k, _)| k).find(|k| keys.contains(k)) {
+            return Err(DesignError::Argument(format!(
+                "`{key}` is both searched (--over) and spread (--spread): allowed in one of them"
+            )));
+        }
         let all_keys = keys.iter().chain(draws.first().into_iter().flatten().map(|(k, _)| k));
         if all_keys.into_iter().any(|k| k.starts_with("arm.damping_ratios.")) {
             let spec = document
