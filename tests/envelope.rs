@@ -138,7 +138,8 @@ fn a_design_limit_on_an_unknown_figure_names_it() {
     let request = DesignRequest {
         scenario: scenario(),
         limits: vec!["peak_forc_n<=2000".parse().unwrap()],
-        minimize: "drive.duration_s".into(),
+        objective: "drive.duration_s".into(),
+        maximize: false,
         over: vec!["drive.duration_s=8..20".parse().unwrap()],
         robustness: Robustness::Nominal,
         tolerance: 0.01,

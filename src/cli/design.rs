@@ -27,8 +27,11 @@ pub struct DesignArgs {
     #[arg(long, value_name = "KEY<=VALUE")]
     limit: Vec<Limit>,
     /// What to minimise: one of the --over keys (e.g. drive.duration_s) or a figure.
-    #[arg(long, value_name = "KEY", required_unless_present = "table")]
+    #[arg(long, value_name = "KEY", required_unless_present_any = ["table", "maximize"], conflicts_with = "maximize")]
     minimize: Option<String>,
+    /// What to maximise instead: one of the --over keys (e.g. drive.accel_deg_s2) or a figure.
+    #[arg(long, value_name = "KEY")]
+    maximize: Option<String>,
     /// A searched key and its range: KEY=A..B. Repeat.
     #[arg(long, value_name = "KEY=A..B", required_unless_present = "table")]
     over: Vec<Over>,
@@ -47,7 +50,7 @@ pub struct DesignArgs {
     /// The seed's table instead of a search: per drive profile (trapezoidal, S-curve, each
     /// shaper), the largest start/stop acceleration within the limits (residual.amplitude_m <=
     /// 0.001 unless --limit sets it).
-    #[arg(long, conflicts_with_all = ["minimize", "over"])]
+    #[arg(long, conflicts_with_all = ["minimize", "maximize", "over"])]
     table: bool,
     /// Relative tolerance of the search on each key (of its range).
     #[arg(long, default_value_t = 0.01)]
@@ -64,6 +67,12 @@ pub struct DesignArgs {
 }
 
 pub fn design_command(args: DesignArgs) -> Result<()> {
+    if args.samples.is_some() && args.spread.is_empty() {
+        bail!("--samples without --spread: allowed with one or more --spread KEY=DIST");
+    }
+    if args.budget < 2 {
+        bail!("--budget {}: allowed 2 or more candidates", args.budget);
+    }
     let robustness = if args.spread.is_empty() {
         Robustness::Nominal
     } else {
@@ -121,7 +130,8 @@ pub fn design_command(args: DesignArgs) -> Result<()> {
     let request = Request {
         scenario: args.scenario,
         limits: args.limit,
-        minimize: args.minimize.expect("required by clap"),
+        maximize: args.maximize.is_some(),
+        objective: args.minimize.or(args.maximize).expect("required by clap"),
         over: args.over,
         robustness,
         tolerance: args.tolerance,
@@ -147,7 +157,7 @@ fn print_design(found: &Design) {
     match &found.outcome.best {
         Some(best) => {
             let keys: Vec<String> = found.keys.iter().zip(&best.x).map(|(k, v)| format!("{k} = {v:.6}")).collect();
-            println!("best: {} ({} = {:.6})", keys.join(", "), found.minimize, best.objective);
+            println!("best: {} ({} = {:.6})", keys.join(", "), found.objective, best.objective);
             for (limit, figure) in found.limits.iter().zip(&best.figures) {
                 println!("  {:<40} {figure:.6e}", show_limit(limit));
             }

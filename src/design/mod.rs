@@ -151,7 +151,7 @@ impl Evaluator {
             Robustness::Envelope { spreads, samples, seed } => {
                 check_spreads(path, spreads, None)?;
                 let sampling = Sampling::new(spreads, *samples, *seed, MethodChoice::Regression, None)?;
-                sampling.case_rows(spreads)
+                sampling.case_rows(spreads, &[])
             }
         };
         if let Some(key) = draws.first().into_iter().flatten().map(|(k, _)| k).find(|k| keys.contains(k)) {
@@ -177,6 +177,18 @@ impl Evaluator {
     /// Replaces the whole table at `key` of the base document (the design table's drive).
     pub fn set_base(&mut self, key: &str, value: toml::Value) -> Result<(), DesignError> {
         set_key(&mut self.document, key, value).map_err(|m| DesignError::Argument(format!("`{key}`: {m}")))
+    }
+
+    /// Pins the base document's shaper to the nominal arm's tuning (see
+    /// [`crate::envelope::cases::nominal_shaper_hz`]), unless it is spread.
+    pub fn pin_shaper(&mut self) -> Result<(), DesignError> {
+        if self.draws.iter().flatten().any(|(k, _)| k == "drive.shaper_hz") {
+            return Ok(());
+        }
+        if let Some(hz) = crate::envelope::cases::nominal_shaper_hz(&self.path, &self.document)? {
+            self.set_base("drive.shaper_hz", toml::Value::Float(hz))?;
+        }
+        Ok(())
     }
 
     /// The base document's number at `key`.
@@ -271,10 +283,14 @@ impl Evaluator {
 
     /// Checks that every limit's and the objective's figure is in the summary of a run at `x`.
     pub fn check_figures(&self, x: &[f64], objective: &Objective) -> Result<(), DesignError> {
-        let runs = self
-            .runs(x)
-            .map_err(|m| DesignError::Argument(format!("the scenario at the search's first point: {m}")))?;
-        let Some(row) = runs.rows.first() else { return Ok(()) };
+        let runs =
+            self.runs(x).map_err(|m| DesignError::Argument(format!("--over at the centre of its ranges: {m}")))?;
+        let Some(row) = runs.rows.first() else {
+            return Err(DesignError::Argument(
+                "the run at the centre of the --over ranges diverged: its figures cannot be checked; narrow the ranges"
+                    .into(),
+            ));
+        };
         let objective_figure = match objective {
             Objective::Figure(f) => Some(f.as_str()),
             Objective::Coordinate(_) => None,
@@ -349,8 +365,10 @@ pub struct Request {
     pub scenario: PathBuf,
     /// The limits.
     pub limits: Vec<Limit>,
-    /// The objective: a searched key or a figure.
-    pub minimize: String,
+    /// The objective: a searched key or a figure (at the envelope's p95).
+    pub objective: String,
+    /// Maximise it instead of minimising.
+    pub maximize: bool,
     /// The searched keys.
     pub over: Vec<Over>,
     /// Where the limits must hold.
@@ -369,7 +387,9 @@ pub struct Design {
     /// The searched keys.
     pub keys: Vec<String>,
     /// The objective.
-    pub minimize: String,
+    pub objective: String,
+    /// Whether it was maximised.
+    pub maximize: bool,
     /// The limits.
     pub limits: Vec<Limit>,
     /// Runs per candidate (1: nominal).
@@ -391,11 +411,14 @@ pub fn design(request: &Request) -> Result<Design, DesignError> {
         return Err(DesignError::Argument("no --limit given: allowed one or more KEY<=VALUE or KEY>=VALUE".into()));
     }
     let keys: Vec<String> = request.over.iter().map(|o| o.key.clone()).collect();
-    let objective = match keys.iter().position(|k| *k == request.minimize) {
+    let objective = match keys.iter().position(|k| *k == request.objective) {
         Some(i) => Objective::Coordinate(i),
-        None => Objective::Figure(request.minimize.clone()),
+        None => Objective::Figure(request.objective.clone()),
     };
-    let evaluator = Evaluator::new(
+    if let Some(key) = keys.iter().enumerate().find(|(i, k)| keys[..*i].contains(k)).map(|(_, k)| k) {
+        return Err(DesignError::Argument(format!("--over `{key}` given twice: allowed once per key")));
+    }
+    let mut evaluator = Evaluator::new(
         &request.scenario,
         keys.clone(),
         request.limits.clone(),
@@ -412,24 +435,46 @@ pub fn design(request: &Request) -> Result<Design, DesignError> {
             )));
         }
     }
+    evaluator.pin_shaper()?;
+    let evaluator = evaluator;
     let centre: Vec<f64> = request.over.iter().map(|o| 0.5 * (o.low + o.high)).collect();
     evaluator.check_figures(&centre, &objective)?;
-    let evaluate = |x: &[f64]| evaluator.evaluate(x, &objective);
+    // Maximising searches the mirrored problem: the objective negated, and a searched key that
+    // is the objective on its mirrored axis, so that its limits hold above a boundary there too.
+    let sign = if request.maximize { -1.0 } else { 1.0 };
+    let mirrored = |i: usize| request.maximize && objective == Objective::Coordinate(i);
+    let real =
+        |x: &[f64]| -> Vec<f64> { x.iter().enumerate().map(|(i, v)| if mirrored(i) { -v } else { *v }).collect() };
+    let evaluate = |x: &[f64]| {
+        let e = evaluator.evaluate(&real(x), &objective);
+        Evaluation { x: x.to_vec(), objective: sign * e.objective, ..e }
+    };
     let problem = Problem {
-        bounds: request.over.iter().map(|o| (o.low, o.high)).collect(),
+        bounds: request
+            .over
+            .iter()
+            .enumerate()
+            .map(|(i, o)| if mirrored(i) { (-o.high, -o.low) } else { (o.low, o.high) })
+            .collect(),
         objective_coordinate: match objective {
             Objective::Coordinate(i) => Some(i),
             Objective::Figure(_) => None,
         },
         tolerance: request.tolerance,
         budget: request.budget,
+        grid: None,
         evaluate: &evaluate,
     };
-    let outcome = minimize(&problem);
+    let mut outcome = minimize(&problem);
+    for e in outcome.history.iter_mut().chain(outcome.best.as_mut()) {
+        e.x = real(&e.x);
+        e.objective *= sign;
+    }
     let candidates = outcome.history.len() + 1;
     Ok(Design {
         keys,
-        minimize: request.minimize.clone(),
+        objective: request.objective.clone(),
+        maximize: request.maximize,
         limits: request.limits.clone(),
         runs_per_candidate: evaluator.runs_per_candidate(),
         candidates,

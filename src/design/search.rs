@@ -4,9 +4,10 @@
 //! - **One coordinate, and it is the objective** (the shortest lift time, the largest
 //!   acceleration): the limits hold above a boundary. A grid of [`GRID_1D`] points finds the
 //!   highest grid point that fails, and bisection between it and the grid point above closes
-//!   the bracket to `tolerance` of the range, in `GRID_1D + log2(1/tolerance)` evaluations. The
+//!   the bracket to `tolerance` of the range, in `GRID_1D + ⌈log2(1/(8 tolerance))⌉` evaluations. The
 //!   answer is conservative where the limits are not monotone: every grid point above it passes.
-//! - **Otherwise**: a coarse grid, then Nelder–Mead (argmin) from the best grid point on the
+//! - **Otherwise**: a coarse grid (up to 5 points a coordinate, within half the budget), then
+//!   Nelder–Mead (argmin) from the best grid point on the
 //!   objective with an exact penalty, `f + PENALTY · Σ max(0, g_j)` (each g scaled by its limit),
 //!   the box kept by clamping. The answer is the best *feasible* point evaluated.
 
@@ -47,6 +48,8 @@ pub struct Problem<'a> {
     pub tolerance: f64,
     /// Most evaluations.
     pub budget: usize,
+    /// The grid of a one-coordinate search, increasing (default [`GRID_1D`] even points).
+    pub grid: Option<Vec<f64>>,
     /// Evaluates a point.
     pub evaluate: &'a (dyn Fn(&[f64]) -> Evaluation + Sync),
 }
@@ -79,14 +82,17 @@ fn best_feasible(history: &[Evaluation]) -> Option<Evaluation> {
 /// to the lowest feasible grid point.
 fn bracket(problem: &Problem) -> Outcome {
     let (lo, hi) = problem.bounds[0];
-    let mut history: Vec<Evaluation> =
-        (0..GRID_1D).map(|i| (problem.evaluate)(&[lo + (hi - lo) * i as f64 / (GRID_1D - 1) as f64])).collect();
+    let grid: Vec<f64> = match &problem.grid {
+        Some(points) => points.clone(),
+        None => (0..GRID_1D).map(|i| lo + (hi - lo) * i as f64 / (GRID_1D - 1) as f64).collect(),
+    };
+    let mut history: Vec<Evaluation> = grid.iter().map(|x| (problem.evaluate)(&[*x])).collect();
     // The highest infeasible grid point: the answer is above it, so that every grid point above
     // the answer passes too (a limit that passes again below a failing point is not trusted).
     let Some(i) = history.iter().rposition(|e| !e.feasible) else {
         return Outcome { best: best_feasible(&history), history, method: "bracket" };
     };
-    if i + 1 == GRID_1D {
+    if i + 1 == grid.len() {
         return Outcome { best: None, history, method: "bracket" };
     }
     let (mut bad, mut good) = (history[i].x[0], history[i + 1].x[0]);
@@ -108,6 +114,8 @@ fn bracket(problem: &Problem) -> Outcome {
 struct Penalised<'a, 'p> {
     problem: &'a Problem<'p>,
     scale: f64,
+    /// Evaluations spent before the simplex (the grid).
+    spent: usize,
     history: &'a std::sync::Mutex<Vec<Evaluation>>,
 }
 
@@ -125,7 +133,7 @@ impl CostFunction for Penalised<'_, '_> {
         let clamped = self.clamp(x);
         let outside: f64 = x.iter().zip(&clamped).map(|(a, b)| (a - b).abs()).sum();
         let mut history = self.history.lock().expect("no evaluation panics holding it");
-        if history.len() >= self.problem.budget {
+        if self.spent + history.len() >= self.problem.budget {
             return Ok(f64::INFINITY);
         }
         let e = (self.problem.evaluate)(&clamped);
@@ -136,10 +144,12 @@ impl CostFunction for Penalised<'_, '_> {
     }
 }
 
-/// A grid of 3 (5 in two coordinates) points per coordinate, then Nelder–Mead from the best.
+/// A grid of up to 5 points per coordinate (within half the budget), then Nelder–Mead from the
+/// best, the whole search within the budget.
 fn nelder_mead(problem: &Problem) -> Outcome {
     let d = problem.bounds.len();
-    let per_axis: usize = if d <= 2 { 5 } else { 3 };
+    // Up to 5 points a key, fewer where the budget keeps at least half of it for the simplex.
+    let per_axis = (2..=5).rev().find(|n: &usize| n.pow(d as u32) <= problem.budget / 2).unwrap_or(2);
     let grid: Vec<Vec<f64>> = (0..per_axis.pow(d as u32))
         .map(|mut n| {
             problem
@@ -168,7 +178,7 @@ fn nelder_mead(problem: &Problem) -> Outcome {
         }))
         .collect();
     let searched = std::sync::Mutex::new(Vec::new());
-    let cost = Penalised { problem, scale, history: &searched };
+    let cost = Penalised { problem, scale, spent: history.len(), history: &searched };
     let solver = NelderMead::new(simplex).with_sd_tolerance(1e-9 * scale.max(1.0)).expect("a positive tolerance");
     let iterations = (problem.budget.saturating_sub(history.len())) as u64;
     // A failed run of the solver leaves the evaluations it made, which are all the answer needs.
@@ -202,6 +212,7 @@ mod tests {
             objective_coordinate: Some(0),
             tolerance: 1e-4,
             budget: 50,
+            grid: None,
             evaluate: &evaluate,
         };
         let outcome = minimize(&problem);
@@ -220,11 +231,31 @@ mod tests {
             objective_coordinate: None,
             tolerance: 1e-4,
             budget: 400,
+            grid: None,
             evaluate: &evaluate,
         };
         let best = minimize(&problem).best.unwrap();
         assert!((best.x[0] - 1.5).abs() < 0.02 && (best.x[1] - 0.5).abs() < 0.02, "{best:?}");
         assert!((best.objective - 0.5).abs() < 0.02 && best.feasible, "{best:?}");
+    }
+
+    /// The grid and the simplex together keep to the budget, in any number of coordinates.
+    #[test]
+    fn the_search_keeps_to_its_budget() {
+        let evaluate = |x: &[f64]| evaluation(x, x.iter().map(|v| (v - 0.3).powi(2)).sum(), &[(x[0], 2.0)]);
+        for (d, budget) in [(2, 12), (3, 20), (4, 40)] {
+            let problem = Problem {
+                bounds: vec![(0.0, 1.0); d],
+                objective_coordinate: None,
+                tolerance: 1e-4,
+                budget,
+                grid: None,
+                evaluate: &evaluate,
+            };
+            let outcome = minimize(&problem);
+            assert!(outcome.history.len() <= budget, "{d} coordinates: {} > {budget}", outcome.history.len());
+            assert!(outcome.best.is_some());
+        }
     }
 
     /// Nothing feasible in the box: no answer, and the budget is kept.
@@ -236,6 +267,7 @@ mod tests {
             objective_coordinate: Some(0),
             tolerance: 1e-3,
             budget: 20,
+            grid: None,
             evaluate: &evaluate,
         };
         let outcome = minimize(&problem);

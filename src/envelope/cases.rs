@@ -17,6 +17,9 @@ use crate::sweep::plan::{explicit_damping_ratios, get_number, read_document, set
 /// Fewest Saltelli base rows for which the envelope estimates Sobol indices by default: below it
 /// their bootstrap intervals are wider than the indices of a typical ranking.
 pub const MIN_SOBOL_BASE: usize = 64;
+/// Fewest base rows `--sensitivity sobol` accepts: below it the estimates sit at the edge of
+/// their own bootstrap intervals.
+pub const MIN_FORCED_SOBOL_BASE: usize = 16;
 
 /// How the sensitivity of the peak force to the spread keys is estimated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -82,16 +85,22 @@ impl Sampling {
         if samples < 2 {
             return Err(EnvelopeError::Argument(format!("--samples {samples}: allowed 2 or more runs per group")));
         }
-        let base = samples / (spreads.len() + 2);
+        let k = spreads.len();
+        let base = samples / (k + 2);
         let method = match choice {
+            MethodChoice::Regression | MethodChoice::Auto if samples < k + 2 => {
+                return Err(EnvelopeError::Argument(format!(
+                    "--samples {samples}: a regression on {k} spread keys needs at least {} runs per group (k + 2)",
+                    k + 2
+                )));
+            }
             MethodChoice::Regression => Method::Regression,
             MethodChoice::Auto if base < MIN_SOBOL_BASE => Method::Regression,
-            MethodChoice::Sobol if base < 2 => {
+            MethodChoice::Sobol if base < MIN_FORCED_SOBOL_BASE => {
                 return Err(EnvelopeError::Argument(format!(
-                    "--sensitivity sobol with {} spread keys needs at least {} runs per group (2 (k + 2)), \
-                     --samples is {samples}",
-                    spreads.len(),
-                    2 * (spreads.len() + 2)
+                    "--sensitivity sobol with {k} spread keys needs at least {} runs per group \
+                     ({MIN_FORCED_SOBOL_BASE} (k + 2)), --samples is {samples}",
+                    MIN_FORCED_SOBOL_BASE * (k + 2)
                 )));
             }
             MethodChoice::Auto | MethodChoice::Sobol => Method::Sobol { base },
@@ -133,8 +142,9 @@ impl Sampling {
         }
     }
 
-    /// Every case's values, group by group, in run order within a group.
-    pub fn case_rows(&self, spreads: &[Spread]) -> Vec<Vec<(String, toml::Value)>> {
+    /// Every case's values, group by group, in run order within a group, each followed by the
+    /// `pinned` keys (the nominal shaper tuning).
+    pub fn case_rows(&self, spreads: &[Spread], pinned: &[(String, toml::Value)]) -> Vec<Vec<(String, toml::Value)>> {
         let draws: Vec<Vec<(String, toml::Value)>> = self
             .unit_rows()
             .iter()
@@ -151,7 +161,9 @@ impl Sampling {
             .into_iter()
             .flat_map(|group| {
                 let head: Vec<(String, toml::Value)> = per_key.iter().cloned().zip(group).collect();
-                draws.iter().map(move |d| head.iter().cloned().chain(d.iter().cloned()).collect())
+                draws
+                    .iter()
+                    .map(move |d| head.iter().cloned().chain(d.iter().cloned()).chain(pinned.iter().cloned()).collect())
             })
             .collect()
     }
@@ -204,15 +216,27 @@ fn check_support(path: &Path, document: &toml::Value, spread: &Spread) -> Result
             let message = if end.is_finite() {
                 format!("the distribution reaches {end}, which the scenario does not accept: {error}")
             } else {
-                format!(
-                    "an unbounded normal on a key with a bounded range: give bounds, normal:MEAN,SD,A..B \
-                     (the scenario does not accept {value:e}: {error})"
-                )
+                "an unbounded normal on a key with a bounded range: give bounds, normal:MEAN,SD,A..B".to_string()
             };
             return Err(EnvelopeError::Spread { spread: spread.to_string(), message });
         }
     }
     Ok(())
+}
+
+/// The base scenario's shaper tuning, Hz, where `document`'s drive has a shaper and no
+/// `shaper_hz`. Left to itself each run would tune its shaper to its own arm: over spread keys
+/// that move the arm's mode (its damping, the payload, a gap that changes nothing but the run),
+/// every draw would be shaped with a knowledge of itself that a real drive does not have. An
+/// envelope and a design therefore pin the tuning to the nominal arm's.
+pub fn nominal_shaper_hz(path: &Path, document: &toml::Value) -> Result<Option<f64>, EnvelopeError> {
+    let drive = document.get("drive");
+    let shaped = drive.and_then(|d| d.get("shaper")).is_some() && drive.and_then(|d| d.get("shaper_hz")).is_none();
+    if !shaped {
+        return Ok(None);
+    }
+    let scenario = Scenario::from_spec(path, parse(path, document.clone())?)?;
+    Ok(scenario.model.drive.motion.shaper_hz())
 }
 
 fn parse(path: &Path, document: toml::Value) -> Result<ScenarioSpec, EnvelopeError> {

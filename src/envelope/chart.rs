@@ -23,22 +23,8 @@ pub fn force_vs_weight(path: &Path, caption: &str, groups: &[GroupEnvelope]) -> 
         (0.0, 1.0)
     };
     let y_hi = points.iter().map(|g| g.peak_force_n.max).fold(1.0, f64::max) * 1.25;
-    crate::bench::register_font();
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x_lo..x_hi, 0.0..y_hi)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("string weight, payload mass × g (N)")
-        .y_desc("peak contact force, largest pair (N)")
-        .draw()
-        .map_err(|e| err(&e))?;
+    let mut chart = crate::sweep::chart::force_weight_axes(&root, caption, x_lo..x_hi, y_hi).map_err(|e| err(&e))?;
     let band = RGBColor(70, 130, 180);
     let half_width = 0.012 * (x_hi - x_lo);
     // The band: a polygon through the p95s and back through the p5s; a bar where one group.

@@ -30,14 +30,6 @@ pub enum SpreadError {
         /// What is wrong with it.
         message: String,
     },
-    /// The distribution may draw values outside the range the key allows.
-    #[error("--spread {key}: {message}")]
-    Range {
-        /// The spread key.
-        key: String,
-        /// What is wrong and how to fix it.
-        message: String,
-    },
 }
 
 /// A probability distribution of one scalar key.
@@ -128,30 +120,6 @@ impl Distribution {
         }
     }
 
-    /// Checks that every value the distribution can draw lies in `allowed`, compared as a closed
-    /// interval. A support that touches an open end of the key's range (`uniform:0..X` on a
-    /// stiffness in (0, ∞)) passes: draws come from `u ∈ (0, 1)`, but rounding or a truncation
-    /// clamp may still land one on the end itself, so pass the next float (`f64::MIN_POSITIVE`)
-    /// as the end if that value must never be drawn. `key` names the key in the error.
-    ///
-    /// An untruncated normal on a key whose allowed range has a finite end is an error asking for
-    /// bounds (`normal:MEAN,SD,A..B`).
-    pub fn check_range(&self, allowed: (f64, f64), key: &str) -> Result<(), SpreadError> {
-        let (lo, hi) = self.support();
-        if lo >= allowed.0 && hi <= allowed.1 {
-            return Ok(());
-        }
-        let range = format!("[{}, {}]", allowed.0, allowed.1);
-        let message = match *self {
-            Distribution::Normal { mean, sd, bounds: None } => format!(
-                "an untruncated normal draws any value but {key} must lie in {range}; give bounds inside it: \
-                 normal:{mean},{sd},A..B"
-            ),
-            _ => format!("the distribution draws values in [{lo}, {hi}] but {key} must lie in {range}"),
-        };
-        Err(SpreadError::Range { key: key.into(), message })
-    }
-
     /// Checks the parameters' rules (finite numbers, A < B, SD > 0, A ≤ MODE ≤ B, A ≤ MEAN ≤ B).
     fn check(&self) -> Result<(), String> {
         let finite = |values: &[f64]| {
@@ -239,13 +207,6 @@ pub struct Spread {
     pub distribution: Distribution,
 }
 
-impl Spread {
-    /// [`Distribution::check_range`] for this spread's key.
-    pub fn check_range(&self, allowed: (f64, f64)) -> Result<(), SpreadError> {
-        self.distribution.check_range(allowed, &self.key)
-    }
-}
-
 impl fmt::Display for Spread {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}={}", self.key, self.distribution)
@@ -260,19 +221,9 @@ impl FromStr for Spread {
         let (key, dist) =
             arg.split_once('=').ok_or_else(|| bad("no `=` between the key and its distribution".into()))?;
         let key = key.trim();
-        check_key(key).map_err(bad)?;
+        crate::sweep::vary::check_key(key).map_err(bad)?;
         let distribution = dist.trim().parse().map_err(bad)?;
         Ok(Spread { key: key.into(), distribution })
-    }
-}
-
-/// The same rule as `--vary`'s keys: dot-separated names and indices.
-fn check_key(key: &str) -> Result<(), String> {
-    let segment_ok = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-    if key.split('.').all(segment_ok) {
-        Ok(())
-    } else {
-        Err(format!("key `{key}` is not a dotted path of names and indices"))
     }
 }
 
@@ -606,21 +557,5 @@ mod tests {
             assert!(m.contains(expected), "{m} does not say {expected}");
             assert!(m.contains("uniform:A..B") && m.contains("triangular:A,MODE,B"), "{m} does not list the forms");
         }
-    }
-
-    #[test]
-    fn check_range_rejects_draws_outside_the_keys_range() {
-        let damping = (0.0, 2.0);
-        assert!(spread("z=uniform:0.01..0.05").check_range(damping).is_ok());
-        assert!(spread("z=normal:0.02,0.005,0..0.1").check_range(damping).is_ok());
-        let m = spread("arm.damping=normal:0.02,0.005").check_range(damping).unwrap_err().to_string();
-        assert!(m.contains("arm.damping") && m.contains("normal:0.02,0.005,A..B"), "{m}");
-        let m = spread("arm.damping=uniform:-0.01..0.05").check_range(damping).unwrap_err().to_string();
-        assert!(m.contains("arm.damping") && m.contains("[0, 2]"), "{m}");
-        // Bounded on one side only still needs bounds.
-        assert!(spread("k=normal:1e6,1e5").check_range((0.0, f64::INFINITY)).is_err());
-        assert!(spread("k=normal:1e6,1e5,5e5..2e6").check_range((0.0, f64::INFINITY)).is_ok());
-        assert!(spread("t=normal:1,0.1").check_range((f64::NEG_INFINITY, f64::INFINITY)).is_ok());
-        assert!(spread("k=triangular:-1,0,1").check_range((0.0, f64::INFINITY)).is_err());
     }
 }

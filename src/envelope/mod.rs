@@ -22,7 +22,6 @@ use serde::Serialize;
 use thiserror::Error;
 
 use crate::scenario::ScenarioError;
-use crate::sweep::plan::read_plan;
 use crate::sweep::row::Row;
 use crate::sweep::{Plan, Shard, SweepError, Vary, prepare, read_results, run_cases};
 use cases::{MethodChoice, Sampling, check_spreads};
@@ -139,7 +138,7 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     let pool =
         rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build().map_err(SweepError::from)?;
     let vary = sampling.vary(&request.spreads);
-    let rows = sampling.case_rows(&request.spreads);
+    let rows = sampling.case_rows(&request.spreads, &pinned_keys(&request.scenario, &request.spreads)?);
     let (plan, scenarios) = pool.install(|| Plan::build_cases(&request.scenario, vary, rows))?;
     let work = prepare(&plan, &request.out, request.shard)?;
     let json = serde_json::to_string_pretty(&sampling).expect("a sampling serialises") + "\n";
@@ -154,6 +153,17 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     })?;
     let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };
     Ok(Report { cases: plan.cases.len(), ran: work.todo.len(), current: work.current, sampling, merged })
+}
+
+/// The keys every run shares beyond the base scenario: the nominal arm's shaper tuning, unless
+/// it is spread.
+fn pinned_keys(path: &Path, spreads: &[Spread]) -> Result<Vec<(String, toml::Value)>, EnvelopeError> {
+    if spreads.iter().any(|s| s.key == "drive.shaper_hz") {
+        return Ok(Vec::new());
+    }
+    let document = crate::sweep::plan::read_document(path)?;
+    let hz = cases::nominal_shaper_hz(path, &document)?;
+    Ok(hz.map(|hz| ("drive.shaper_hz".to_string(), toml::Value::Float(hz))).into_iter().collect())
 }
 
 /// The file of an envelope's sampling, beside the sweep's `plan.json`.
@@ -250,9 +260,4 @@ fn table(envelope: &Envelope) -> String {
         }
     }
     out
-}
-
-/// Whether `dir` holds an envelope (its sampling) rather than a sweep.
-pub fn is_envelope(dir: &Path) -> bool {
-    dir.join(SAMPLING_FILE).exists() && read_plan(&dir.join("plan.json")).is_ok()
 }

@@ -13,6 +13,8 @@ use crate::sweep::row::Row;
 
 /// Bootstrap resamples for the Sobol indices' confidence intervals.
 pub const BOOTSTRAP_RESAMPLES: usize = 500;
+/// Mixed into the seed for the bootstrap's draws.
+const BOOTSTRAP_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
 
 /// Percentiles of a figure over a group's runs (type 7: linear between order statistics).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -160,7 +162,7 @@ pub fn group_envelope(
         .collect();
     let per_weight: Vec<f64> = ran.iter().map(|r| r.peak_force_n() / (r.payload_kg * STANDARD_GRAVITY_M_S2)).collect();
     let figure =
-        |f: &dyn Fn(&RunFigures) -> f64| -> Option<Vec<f64>> { runs.iter().map(|r| r.as_ref().map(f)).collect() };
+        |f: &dyn Fn(&RunFigures) -> f64| -> Vec<Option<f64>> { runs.iter().map(|r| r.as_ref().map(f)).collect() };
     let keys: Vec<String> = spreads.iter().map(|s| s.key.clone()).collect();
     let sensitivity = vec![
         sensitivity("peak_force_n", sampling, &keys, values, figure(&|r| r.peak_force_n())),
@@ -175,18 +177,20 @@ pub fn group_envelope(
         peak_force_n: Percentiles::of(&peaks),
         peak_force_per_weight: Percentiles::of(&per_weight.into_iter().filter(|f| f.is_finite()).collect::<Vec<_>>()),
         pairs,
-        residual_amplitude_m: Percentiles::of(&ran.iter().map(|r| r.residual_m).collect::<Vec<_>>()),
+        residual_amplitude_m: Percentiles::of(
+            &ran.iter().map(|r| r.residual_m).filter(|r| r.is_finite()).collect::<Vec<_>>(),
+        ),
         sensitivity,
     }
 }
 
-/// The sensitivity of `figure` (`y`, one per run; `None` if a run diverged) to the keys.
+/// The sensitivity of `figure` (`y`, one per run; `None` where a run diverged) to the keys.
 fn sensitivity(
     figure: &'static str,
     sampling: &Sampling,
     keys: &[String],
     values: &[Vec<f64>],
-    y: Option<Vec<f64>>,
+    y: Vec<Option<f64>>,
 ) -> Sensitivity {
     let method = match sampling.method {
         Method::Sobol { .. } => "sobol",
@@ -199,9 +203,17 @@ fn sensitivity(
         ranking: Vec::new(),
         not_estimated: Some(why.into()),
     };
-    let Some(y) = y else { return skipped("a run diverged") };
+    // A Saltelli design needs every run; a regression fits the runs there are.
+    let (values, y): (Vec<Vec<f64>>, Vec<f64>) = match sampling.method {
+        Method::Sobol { .. } if y.iter().any(Option::is_none) => return skipped("a run diverged"),
+        _ => values.iter().cloned().zip(y).filter_map(|(x, y)| Some((x, y?))).unzip(),
+    };
+    let values = &values;
     if y.iter().any(|v| !v.is_finite()) {
         return skipped("the figure is missing in some runs (no contact pair)");
+    }
+    if y.len() < keys.len() + 2 {
+        return skipped("fewer runs than the keys + 2 a regression needs");
     }
     let mean = y.iter().sum::<f64>() / y.len() as f64;
     if y.iter().all(|v| (v - mean).abs() <= 1e-12 * mean.abs().max(1e-300)) {
@@ -209,8 +221,9 @@ fn sensitivity(
     }
     let (mut ranking, r_squared) = match sampling.method {
         Method::Sobol { base } => {
-            let design = SaltelliDesign { base, dimensions: keys.len(), rows: sampling.unit_rows() };
-            let indices = sobol(&design, &y, BOOTSTRAP_RESAMPLES, sampling.seed);
+            let design = SaltelliDesign { base, dimensions: keys.len(), rows: Vec::new() };
+            // The bootstrap's own stream, apart from the one that drew the design.
+            let indices = sobol(&design, &y, BOOTSTRAP_RESAMPLES, sampling.seed ^ BOOTSTRAP_SEED);
             let ranking = keys
                 .iter()
                 .enumerate()
@@ -233,7 +246,10 @@ fn sensitivity(
             (ranking, Some(fit.r_squared))
         }
     };
-    let measure = |k: &KeySensitivity| k.total.as_ref().or(k.coefficient.as_ref()).map_or(0.0, |i| i.estimate.abs());
+    let measure = |k: &KeySensitivity| {
+        let m = k.total.as_ref().or(k.coefficient.as_ref()).map_or(f64::NAN, |i| i.estimate.abs());
+        if m.is_nan() { f64::NEG_INFINITY } else { m }
+    };
     ranking.sort_by(|a, b| measure(b).total_cmp(&measure(a)));
     Sensitivity { figure, method, r_squared, ranking, not_estimated: None }
 }

@@ -76,22 +76,8 @@ fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> 
     // Headroom above the highest point for the legend, a line per curve.
     let (_, y_hi) = padded(points().map(|p| p.1), true);
     let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
-    crate::bench::register_font();
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(&e))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(80)
-        .build_cartesian_2d(x_lo..x_hi, 0.0..y_hi)
-        .map_err(|e| err(&e))?;
-    chart
-        .configure_mesh()
-        .x_desc("string weight, payload mass × g (N)")
-        .y_desc("peak contact force, largest pair (N)")
-        .draw()
-        .map_err(|e| err(&e))?;
+    let mut chart = force_weight_axes(&root, caption, x_lo..x_hi, y_hi).map_err(|e| err(&e))?;
     for (k, (label, points)) in curves.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();
         chart
@@ -111,6 +97,39 @@ fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> 
             .map_err(|e| err(&e))?;
     }
     root.present().map_err(|e| err(&e))
+}
+
+/// The axes every force-against-weight chart shares (sweeps, envelopes): string weight (N)
+/// across, peak contact force of the largest pair (N) up from 0, on a white `root`.
+pub(crate) fn force_weight_axes<'a>(
+    root: &DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
+    caption: &str,
+    weight_n: std::ops::Range<f64>,
+    force_hi_n: f64,
+) -> Result<
+    ChartContext<
+        'a,
+        SVGBackend<'a>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    String,
+> {
+    crate::bench::register_font();
+    root.fill(&WHITE).map_err(|e| e.to_string())?;
+    let mut chart = ChartBuilder::on(root)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(80)
+        .build_cartesian_2d(weight_n, 0.0..force_hi_n)
+        .map_err(|e| e.to_string())?;
+    chart
+        .configure_mesh()
+        .x_desc("string weight, payload mass × g (N)")
+        .y_desc("peak contact force, largest pair (N)")
+        .draw()
+        .map_err(|e| e.to_string())?;
+    Ok(chart)
 }
 
 /// An axis range around `values` with 5 % margins (from 0 if `from_zero`; 0..1 if empty).

@@ -33,7 +33,9 @@ impl std::str::FromStr for Vary {
     }
 }
 
-fn check_key(key: &str) -> Result<(), String> {
+/// Whether `key` is a dotted path of names and indices (`dampeners.0.gap_m`), the form every
+/// scenario key on the command line takes.
+pub fn check_key(key: &str) -> Result<(), String> {
     let segment_ok = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
     if key.split('.').all(segment_ok) {
         Ok(())
