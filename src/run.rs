@@ -598,7 +598,7 @@ fn summarize(
         payload_kg,
         model: fidelity.to_string(),
         model_reason: String::new(),
-        integrator: format!("{:?}", model.integrator),
+        integrator: model.integrator.to_string(),
         contact_method: model.contact.method.name().into(),
         step_s: model.time.step_s,
         free_step_s: model.time.free_step_s.unwrap_or(model.time.step_s),
