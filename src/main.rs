@@ -14,7 +14,7 @@ use pipearm::analysis::StiffnessClass;
 use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
 use pipearm::beam::BeamModel;
 use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_recording, write_summary};
-use pipearm::regression::{baseline_path, blessed, compare, read_baseline, write_baseline};
+use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
 use pipearm::run::{RunOptions, RunSummary, run, run_partial};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
@@ -380,6 +380,9 @@ fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool)
             let previous = read_baseline(&file, &name, path).ok();
             let new = blessed(&summary, previous.as_ref());
             if let Some(previous) = &previous {
+                for c in setting_changes(previous, &summary) {
+                    println!("{name}: {} {} -> {}", c.setting, c.baseline, c.now);
+                }
                 for row in compare(previous, &summary).iter().filter(|r| r.now != r.baseline) {
                     println!("{name}: {} {} -> {}", row.name, row.baseline, row.now);
                 }
@@ -390,18 +393,23 @@ fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool)
         }
         let baseline = read_baseline(&file, &name, path)?;
         let rows = compare(&baseline, &summary);
-        failed += rows.iter().filter(|r| !r.pass).count();
+        let changed = setting_changes(&baseline, &summary);
+        failed += rows.iter().filter(|r| !r.pass).count() + changed.len();
         if !json {
+            for c in &changed {
+                println!("{name}: SETTING CHANGED {}: blessed under {}, run under {}", c.setting, c.baseline, c.now);
+            }
             print_rows(&name, &rows);
         }
-        report.push(serde_json::json!({ "scenario": name, "baseline": file, "rows": rows }));
+        report
+            .push(serde_json::json!({ "scenario": name, "baseline": file, "settings_changed": changed, "rows": rows }));
     }
     if json {
         println!("{}", serde_json::to_string_pretty(&report)?);
     }
     if failed > 0 {
         bail!(
-            "{failed} quantities outside their tolerance (docs/regression.md); `pipearm check --bless` accepts a change on purpose"
+            "{failed} quantities outside their tolerance or settings changed (docs/regression.md); `pipearm check --bless` accepts a change on purpose"
         );
     }
     Ok(())

@@ -1,6 +1,8 @@
 //! Regression baselines on what a dampener takes: per contact pair the peak force, its time,
-//! the impulse and the impact count, and the run's largest tip deflection, each with a
-//! tolerance. `pipearm check` compares a run with its baseline; `--bless` rewrites it.
+//! the impulse and the impact count; the run's largest tip deflection, its residual vibration's
+//! frequency and log decrement and the peak drive torque, each with a tolerance; and the settings
+//! it was blessed under (model, integrator, contact method, step). `pipearm check` compares a run
+//! with its baseline and fails on a changed setting; `--bless` rewrites it.
 //!
 //! How the default tolerances were chosen is measured in `docs/regression.md`.
 
@@ -53,6 +55,10 @@ pub struct Baseline {
     pub step_s: f64,
     /// Contact method.
     pub contact_method: String,
+    /// Integrator, as a scenario names it with its parameters (empty in a baseline blessed before
+    /// it was recorded: any run then differs from it until blessed again).
+    #[serde(default)]
+    pub integrator: String,
     /// The quantities.
     #[serde(rename = "quantity")]
     pub quantities: Vec<Quantity>,
@@ -66,6 +72,9 @@ pub fn default_tolerance(name: &str) -> (f64, f64) {
         "impulse_n_s" => (0.03, 0.01),
         "impact_count" => (0.0, 1.0),
         "max_tip_deflection_m" => (0.01, 1e-5),
+        "frequency_hz" => (0.01, 0.0),
+        "log_decrement" => (0.10, 0.002),
+        "peak_drive_torque_n_m" => (0.02, 1.0),
         _ => (0.02, 0.0),
     }
 }
@@ -80,7 +89,42 @@ pub fn quantities_of(summary: &RunSummary) -> Vec<(String, f64)> {
         q.push((format!("{}.impact_count", p.pair), p.impact_count as f64));
     }
     q.push(("max_tip_deflection_m".into(), summary.max_tip_deflection_m));
+    // The decay and the drive's peak where the run has them (a residual that does not oscillate
+    // has no frequency; an actuated hub reports its torque in the actuator's summary).
+    let optional = [
+        ("residual.frequency_hz", summary.residual.frequency_hz),
+        ("residual.log_decrement", summary.residual.log_decrement),
+        ("peak_drive_torque_n_m", summary.peak_drive_torque_n_m),
+    ];
+    q.extend(optional.into_iter().filter(|(_, v)| v.is_finite()).map(|(n, v)| (n.to_string(), v)));
     q
+}
+
+/// A setting a run differs from its baseline in: its value in the baseline and now.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SettingChange {
+    /// `model`, `integrator`, `contact_method` or `step_s`.
+    pub setting: &'static str,
+    /// As blessed.
+    pub baseline: String,
+    /// As run.
+    pub now: String,
+}
+
+/// The settings (model, integrator, contact method, step) in which a run differs from the ones
+/// its baseline was blessed under: a baseline is a claim about one configuration, so a change of
+/// configuration fails the check until it is blessed.
+pub fn setting_changes(baseline: &Baseline, summary: &RunSummary) -> Vec<SettingChange> {
+    [
+        ("model", baseline.model.clone(), summary.model.clone()),
+        ("integrator", baseline.integrator.clone(), summary.integrator.clone()),
+        ("contact_method", baseline.contact_method.clone(), summary.contact_method.clone()),
+        ("step_s", baseline.step_s.to_string(), summary.step_s.to_string()),
+    ]
+    .into_iter()
+    .filter(|(_, was, now)| was != now)
+    .map(|(setting, baseline, now)| SettingChange { setting, baseline, now })
+    .collect()
 }
 
 /// One row of a comparison.
@@ -152,6 +196,7 @@ pub fn blessed(summary: &RunSummary, previous: Option<&Baseline>) -> Baseline {
         model: summary.model.clone(),
         step_s: summary.step_s,
         contact_method: summary.contact_method.clone(),
+        integrator: summary.integrator.clone(),
         quantities,
     }
 }

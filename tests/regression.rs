@@ -146,3 +146,22 @@ fn a_family_gives_the_same_results_on_one_or_two_worker_threads() {
     };
     assert_eq!(summaries(1), summaries(2));
 }
+
+/// A baseline holds for the settings it was blessed under: the same scene under another
+/// integrator or step is a changed setting, named, until blessed.
+#[test]
+fn a_run_under_other_settings_than_its_baseline_names_them() {
+    use pipearm::integrate::IntegratorKind;
+    use pipearm::regression::setting_changes;
+    let s = scenario("default");
+    let baseline =
+        read_baseline(&baseline_path(&manifest().join("tests/baselines"), "default"), "default", &s.path).unwrap();
+    let (summary, _) = run(&s.model, None).unwrap();
+    assert!(setting_changes(&baseline, &summary).is_empty(), "as blessed");
+    let mut model = s.model.clone();
+    model.integrator = IntegratorKind::GeneralizedAlpha { rho_inf: 0.8 };
+    model.time.step_s = 0.002;
+    let (other, _) = run(&model, None).unwrap();
+    let changed: Vec<&str> = setting_changes(&baseline, &other).iter().map(|c| c.setting).collect();
+    assert_eq!(changed, ["integrator", "step_s"]);
+}
