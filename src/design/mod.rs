@@ -20,9 +20,10 @@ use crate::envelope::cases::{MethodChoice, Sampling};
 use crate::envelope::dist::Spread;
 use crate::envelope::sensitivity::quantile;
 use crate::envelope::{EnvelopeError, cases::check_spreads};
+use crate::robot::Robot;
 use crate::run::run;
 use crate::scenario::{Scenario, ScenarioError};
-use crate::sweep::plan::{explicit_damping_ratios, get_number, read_document, set_key};
+use crate::sweep::plan::{base_document, get_number, set_key, spec_of};
 use crate::sweep::row::Row;
 use search::{Evaluation, Outcome, Problem, minimize};
 
@@ -121,6 +122,7 @@ pub enum Robustness {
 pub struct Evaluator {
     path: PathBuf,
     document: toml::Value,
+    robot: Robot,
     keys: Vec<String>,
     draws: Vec<Vec<(String, toml::Value)>>,
     limits: Vec<Limit>,
@@ -136,7 +138,8 @@ struct Runs {
 }
 
 impl Evaluator {
-    /// An evaluator of `keys` over the scenario at `path` (its document edited by `edit`).
+    /// An evaluator of `keys` over the scenario at `path`, with `limits`, and `reported` figures
+    /// beside them.
     pub fn new(
         path: &Path,
         keys: Vec<String>,
@@ -145,7 +148,6 @@ impl Evaluator {
         robustness: &Robustness,
         threads: Option<usize>,
     ) -> Result<Self, DesignError> {
-        let mut document = read_document(path)?;
         let draws = match robustness {
             Robustness::Nominal => vec![Vec::new()],
             Robustness::Envelope { spreads, samples, seed } => {
@@ -160,18 +162,14 @@ impl Evaluator {
             )));
         }
         let all_keys = keys.iter().chain(draws.first().into_iter().flatten().map(|(k, _)| k));
-        if all_keys.into_iter().any(|k| k.starts_with("arm.damping_ratios.")) {
-            let spec = document
-                .clone()
-                .try_into()
-                .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
-            explicit_damping_ratios(&mut document, &Scenario::load_robot(path, &spec)?);
-        }
+        let document = base_document(path, all_keys.map(String::as_str))?;
+        // Every candidate's runs share the robot: its file is read once, not once a run.
+        let robot = Scenario::load_robot(path, &spec_of(path, document.clone())?)?;
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads.unwrap_or(0))
             .build()
             .map_err(|e| DesignError::Argument(format!("threads: {e}")))?;
-        Ok(Evaluator { path: path.into(), document, keys, draws, limits, reported, pool })
+        Ok(Evaluator { path: path.into(), document, robot, keys, draws, limits, reported, pool })
     }
 
     /// Replaces the whole table at `key` of the base document (the design table's drive).
@@ -219,8 +217,8 @@ impl Evaluator {
                     for (key, value) in values {
                         set_key(&mut document, &key, value).map_err(|m| format!("`{key}`: {m}"))?;
                     }
-                    let spec = document.try_into().map_err(|e: toml::de::Error| e.to_string())?;
-                    Scenario::from_spec(&self.path, spec).map_err(|e| e.to_string())
+                    let spec = spec_of(&self.path, document).map_err(|e| e.to_string())?;
+                    Scenario::from_spec_and_robot(&self.path, spec, self.robot.clone()).map_err(|e| e.to_string())
                 })
                 .collect::<Result<_, String>>()
         })?;
@@ -340,12 +338,7 @@ pub enum Objective {
 /// of the summary.
 fn figure_of(row: &Row, figure: &str) -> Option<f64> {
     if figure == "peak_force_n" {
-        return row
-            .scalars
-            .iter()
-            .filter(|(k, _)| k.starts_with("pairs.") && k.ends_with(".peak_force_n"))
-            .filter_map(|(_, v)| v.as_f64())
-            .reduce(f64::max);
+        return row.largest_peak_force_n("");
     }
     row.get(figure).and_then(|v| v.as_f64())
 }

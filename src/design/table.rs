@@ -85,11 +85,10 @@ pub fn acceleration_table(
 ) -> Result<AccelerationTable, DesignError> {
     let keys = vec!["drive.ramp_fraction".to_string()];
     let reported = vec!["drive.peak_accel_deg_s2".to_string()];
+    let mut evaluator = Evaluator::new(path, keys, limits.to_vec(), reported, robustness, threads)?;
     let mut rows = Vec::new();
-    let mut runs_per_candidate = 1;
     for (profile, shaper) in PROFILES {
-        let mut evaluator = Evaluator::new(path, keys.clone(), limits.to_vec(), reported.clone(), robustness, threads)?;
-        runs_per_candidate = evaluator.runs_per_candidate();
+        // The whole drive table is replaced for each profile (a pinned shaper tuning with it).
         evaluator.set_base("drive", drive_table(&evaluator, profile, shaper)?)?;
         evaluator.pin_shaper()?;
         let objective = Objective::Coordinate(0);
@@ -117,7 +116,7 @@ pub fn acceleration_table(
             candidates: outcome.history.len(),
         });
     }
-    Ok(AccelerationTable { limits: limits.to_vec(), runs_per_candidate, rows })
+    Ok(AccelerationTable { limits: limits.to_vec(), runs_per_candidate: evaluator.runs_per_candidate(), rows })
 }
 
 /// The scenario's lift as `profile` (under `shaper`), its ramp fraction to be set.

@@ -10,9 +10,9 @@ use serde::{Deserialize, Serialize};
 use super::EnvelopeError;
 use super::dist::Spread;
 use super::sample::{latin_hypercube, saltelli};
-use crate::scenario::{Scenario, ScenarioSpec};
+use crate::scenario::Scenario;
 use crate::sweep::Vary;
-use crate::sweep::plan::{explicit_damping_ratios, get_number, read_document, set_key};
+use crate::sweep::plan::{base_document, get_number, set_key, spec_of};
 
 /// Fewest Saltelli base rows for which the envelope estimates Sobol indices by default: below it
 /// their bootstrap intervals are wider than the indices of a typical ranking.
@@ -182,11 +182,7 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
             return Err(EnvelopeError::Argument(format!("--spread `{s}`: `{}` is spread or grouped twice", s.key)));
         }
     }
-    let mut document = read_document(path)?;
-    let spec: ScenarioSpec = parse(path, document.clone())?;
-    if spreads.iter().any(|s| s.key.starts_with("arm.damping_ratios.")) {
-        explicit_damping_ratios(&mut document, &Scenario::load_robot(path, &spec)?);
-    }
+    let document = base_document(path, spreads.iter().map(|s| s.key.as_str()))?;
     for spread in spreads {
         if get_number(&document, &spread.key).is_none() {
             return Err(EnvelopeError::Spread {
@@ -211,7 +207,7 @@ fn check_support(path: &Path, document: &toml::Value, spread: &Spread) -> Result
         let mut probe = document.clone();
         set_key(&mut probe, &spread.key, toml::Value::Float(value))
             .map_err(|message| EnvelopeError::Spread { spread: spread.to_string(), message })?;
-        let checked = parse(path, probe).and_then(|spec| Scenario::from_spec(path, spec).map_err(Into::into));
+        let checked = spec_of(path, probe).and_then(|spec| Scenario::from_spec(path, spec));
         if let Err(error) = checked {
             let message = if end.is_finite() {
                 format!("the distribution reaches {end}, which the scenario does not accept: {error}")
@@ -235,15 +231,6 @@ pub fn nominal_shaper_hz(path: &Path, document: &toml::Value) -> Result<Option<f
     if !shaped {
         return Ok(None);
     }
-    let scenario = Scenario::from_spec(path, parse(path, document.clone())?)?;
+    let scenario = Scenario::from_spec(path, spec_of(path, document.clone())?)?;
     Ok(scenario.model.drive.motion.shaper_hz())
-}
-
-fn parse(path: &Path, document: toml::Value) -> Result<ScenarioSpec, EnvelopeError> {
-    document.try_into().map_err(|e: toml::de::Error| {
-        EnvelopeError::Scenario(Box::new(crate::scenario::ScenarioError::Parse {
-            path: path.into(),
-            message: e.to_string(),
-        }))
-    })
 }

@@ -37,12 +37,7 @@ pub fn curves(plan: &Plan, rows: &[Row]) -> Vec<Curve> {
 /// (string weight N, largest peak contact force over the pairs N) of a case.
 fn weight_and_force(row: &Row) -> Option<(f64, f64)> {
     let weight = row.get("summary.payload_kg")?.as_f64()? * STANDARD_GRAVITY_M_S2;
-    let force = row
-        .scalars
-        .iter()
-        .filter(|(k, _)| k.starts_with("summary.pairs.") && k.ends_with(".peak_force_n"))
-        .filter_map(|(_, v)| v.as_f64())
-        .reduce(f64::max)?;
+    let force = row.largest_peak_force_n("summary.")?;
     Some((weight, force))
 }
 

@@ -70,15 +70,8 @@ impl Plan {
         vary: Vec<Vary>,
         rows: Vec<Vec<(String, toml::Value)>>,
     ) -> Result<(Plan, Vec<Scenario>), SweepError> {
-        let mut base = read_document(path)?;
         let keys: Vec<&str> = vary.iter().map(|v| v.key.as_str()).collect();
-        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) {
-            let spec: ScenarioSpec = base
-                .clone()
-                .try_into()
-                .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
-            explicit_damping_ratios(&mut base, &Scenario::load_robot(path, &spec)?);
-        }
+        let base = base_document(path, keys.iter().copied())?;
         // Each robot file once: the robot, and the file's bytes for the cases' hashes.
         let mut robots: HashMap<PathBuf, (Robot, Vec<u8>)> = HashMap::new();
         let mut specs = Vec::new();
@@ -114,6 +107,22 @@ impl Plan {
     pub fn keys(&self) -> Vec<&str> {
         self.vary.iter().map(|v| v.key.as_str()).collect()
     }
+}
+
+/// The scenario file at `path` as a document in which `keys` can be set: the arm's damping
+/// ratios made explicit where a key sets one of them ([`explicit_damping_ratios`]).
+pub fn base_document<'k>(path: &Path, keys: impl IntoIterator<Item = &'k str>) -> Result<toml::Value, ScenarioError> {
+    let mut document = read_document(path)?;
+    if keys.into_iter().any(|k| k.starts_with("arm.damping_ratios.")) {
+        let robot = Scenario::load_robot(path, &spec_of(path, document.clone())?)?;
+        explicit_damping_ratios(&mut document, &robot);
+    }
+    Ok(document)
+}
+
+/// `document` as the spec of a scenario read from `path`.
+pub fn spec_of(path: &Path, document: toml::Value) -> Result<ScenarioSpec, ScenarioError> {
+    document.try_into().map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })
 }
 
 /// The scenario file at `path` as a TOML document.

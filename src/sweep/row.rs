@@ -29,6 +29,17 @@ impl Row {
     pub fn get(&self, path: &str) -> Option<&Value> {
         self.scalars.iter().find(|(k, _)| k == path).map(|(_, v)| v)
     }
+
+    /// The largest peak force over the run's contact pairs, N (`None` without a pair), its
+    /// summary at `prefix` (`summary.` in a case file, empty in a summary read alone).
+    pub fn largest_peak_force_n(&self, prefix: &str) -> Option<f64> {
+        let pairs = format!("{prefix}pairs.");
+        self.scalars
+            .iter()
+            .filter(|(k, _)| k.starts_with(&pairs) && k.ends_with(".peak_force_n"))
+            .filter_map(|(_, v)| v.as_f64())
+            .reduce(f64::max)
+    }
 }
 
 /// Pushes every scalar of `value`, which is at `path`, onto `out`.
