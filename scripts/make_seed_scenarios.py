@@ -79,11 +79,14 @@ for arm, shape in ((1, "circle"), (2, "rectangle"), (3, "hollow-rectangle")):
     write("3.2.1-section", f"arm{arm}-{shape}", LAB.format(section="3.2.1", what=f"arm {arm} ({shape}), block 3, trapezoidal, 15 s", name=f"3.2.1-arm{arm}", arm=arm, block=3, drive=trapezoid(15.0)))
 for block, grams in ((1, 100), (2, 206), (3, 412)):
     write("3.2.2-load", f"block{block}-{grams}g", LAB.format(section="3.2.2", what=f"arm 3, block {block} ({grams} g), trapezoidal, 15 s", name=f"3.2.2-block{block}", arm=3, block=block, drive=trapezoid(15.0)))
+# The seed lumps the string at the hand (its m_p): these scenes reproduce that model; the
+# flexible string held by both hands is compared in docs/seed-experiments.md.
+LUMPED = 'model = { kind = "rigid" }  # the seed\'s lumped string'
 write("3.3.1-clamp", "unclamped", FULL.format(section="3.3.1", what="full-scale arm without a string", name="3.3.1-unclamped", payload='kind = "none"', pads=""))
-write("3.3.1-clamp", "clamped-2-7-8", FULL.format(section="3.3.1", what="full-scale arm with the 2-7/8 in string clamped", name="3.3.1-clamped", payload='kind = "string"\nsize = "2-7/8"', pads=""))
+write("3.3.1-clamp", "clamped-2-7-8", FULL.format(section="3.3.1", what="full-scale arm with the 2-7/8 in string clamped", name="3.3.1-clamped", payload='kind = "string"\nsize = "2-7/8"\n' + LUMPED, pads=""))
 for size in ("2-3/8", "2-7/8", "4-1/2"):
     tag = size.replace("/", "-")
-    write("3.3.2-size", tag, FULL.format(section="3.3.2", what=f"full-scale arm, {size} in string", name=f"3.3.2-{tag}", payload=f'kind = "string"\nsize = "{size}"', pads=""))
+    write("3.3.2-size", tag, FULL.format(section="3.3.2", what=f"full-scale arm, {size} in string", name=f"3.3.2-{tag}", payload=f'kind = "string"\nsize = "{size}"\n' + LUMPED, pads=""))
 for size in ("2-7/8", "4-1/2"):
     tag = size.replace("/", "-")
-    write("3.4-contact", tag, FULL.format(section="3.4", what=f"full-scale arm and dampener, {size} in string", name=f"3.4-{tag}", payload=f'kind = "string"\nsize = "{size}"', pads=PAD))
+    write("3.4-contact", tag, FULL.format(section="3.4", what=f"full-scale arm and dampener, {size} in string", name=f"3.4-{tag}", payload=f'kind = "string"\nsize = "{size}"\n' + LUMPED, pads=PAD))

@@ -7,14 +7,15 @@
 //! integrator and pad laws); it is then the caller's to keep within the ranges the scenario's
 //! checks enforce.
 //!
-//! The drive is a reference motion and the actuator that tracks it ([`crate::actuator`]). The string is a lumped body today; its own dynamics belong in
-//! [`HeldString`].
+//! The drive is a reference motion and the actuator that tracks it ([`crate::actuator`]). The
+//! string is a body of its own ([`HeldString`]): lumped at its centre (`rigid`), or a tube beam
+//! clamped at its hands and reduced to its own modes (`modal`, `fe`).
 
 use serde::{Deserialize, Serialize};
 
 use crate::actuator::{Actuator, ActuatorPlant};
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
-use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass};
+use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, MemberSpec, Segment};
 use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
@@ -49,9 +50,18 @@ pub struct Model {
 }
 
 impl Model {
-    /// The beam description of the arm: the robot's links plus the payload's lumped masses.
-    pub fn beam_spec(&self) -> Result<BeamSpec, BeamError> {
-        self.robot.beam_spec(&self.payload.masses())
+    /// The beam description with a held string at `string` fidelity (`None`: as lumped masses,
+    /// the only form other payloads take).
+    pub fn beam_spec_with_string(&self, string: Option<Fidelity>) -> Result<BeamSpec, BeamError> {
+        match (self.payload.string(), string) {
+            (Some(held), Some(fidelity)) if fidelity != Fidelity::Rigid => {
+                let mut spec = self.robot.beam_spec(&[])?;
+                spec.member = Some(held.member_spec(fidelity)?);
+                spec.validate()?;
+                Ok(spec)
+            }
+            _ => self.robot.beam_spec(&self.payload.masses()),
+        }
     }
 
     /// Arm options: the robot's damping and hub inertia, the scene's physics.
@@ -157,30 +167,95 @@ impl Payload {
     }
 }
 
-/// A pipe string in the gripper.
+/// A pipe string held by the arm's hands.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeldString {
     /// The string, from the pipe catalogue.
     pub pipe: PipeString,
-    /// Name of the carried body that grips it.
-    pub body: String,
-    /// Arm station of that body, where the string's centre is held, m.
-    pub station_m: f64,
+    /// Where each hand grips it, ascending along the arm (at least one).
+    pub grips: Vec<Grip>,
     /// How the jaws hold it.
     pub clamp: Clamp,
     /// The jaws' friction, used when `clamp` is [`Clamp::Friction`].
     pub friction: FrictionClamp,
+    /// Its fidelity (`None`: the cheapest the scene needs, [`crate::select::string_fidelity`]).
+    pub model: Option<Fidelity>,
+    /// Damping ratio of its bending modes (held in the hands).
+    pub damping_ratio: f64,
 }
 
+/// Where one hand grips the string.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Grip {
+    /// The carried body (URDF link) that grips.
+    pub hand: String,
+    /// Its arm station, m.
+    pub station_m: f64,
+    /// Where it grips, measured along the string from its end nearest the pivot, m.
+    pub at_m: f64,
+}
+
+/// Finite elements along a flexibly modelled string: a 12.5 m joint at 0.5 m per element, where
+/// the overhangs' first three frequencies are within 0.1 % of their converged values.
+pub const STRING_ELEMENTS: usize = 25;
+
+/// Default damping ratio of a held string's bending modes: 1 %, a steel tube in clamps (the
+/// arm's default, MSC ADAMS' for flexible bodies).
+pub const DEFAULT_STRING_DAMPING_RATIO: f64 = 0.01;
+
 impl HeldString {
-    /// The string as one mass at the gripper's station.
+    /// Arm station of the string's end nearest the pivot, m (it may lie behind the pivot).
+    pub fn start_m(&self) -> f64 {
+        self.grips[0].station_m - self.grips[0].at_m
+    }
+
+    /// Arm station of the string's centre, m.
+    pub fn centre_m(&self) -> f64 {
+        self.start_m() + 0.5 * self.pipe.length_m
+    }
+
+    /// The hand that carries the jaws and draws the string: the outermost grip's.
+    pub fn palm(&self) -> &Grip {
+        self.grips.last().expect("a held string has a grip")
+    }
+
+    /// The string as one rigid mass at its centre (the `rigid` fidelity).
     pub fn lumped_mass(&self) -> ConcentratedMass {
         ConcentratedMass {
             name: format!("string {}", self.pipe.pipe.size),
-            position_m: self.station_m,
+            position_m: self.centre_m(),
             mass_kg: self.pipe.mass_kg(),
             rotary_inertia_kg_m2: self.pipe.transverse_inertia_kg_m2(),
         }
+    }
+
+    /// The string as a beam clamped at its hands, at `fidelity` (`modal` keeps that many
+    /// fixed-interface modes, `fe` every DOF).
+    pub fn member_spec(&self, fidelity: Fidelity) -> Result<MemberSpec, BeamError> {
+        let p = self.pipe.pipe;
+        let section = crate::beam::SectionShape::Tube { outer_diameter_m: p.outer_diameter_m, wall_m: p.wall_m };
+        let steel = crate::beam::Material::STEEL;
+        let mut segment = Segment::from_shape(self.pipe.length_m, &section, &steel)?;
+        // The catalogue's nominal weight (upsets and couplings included), not the plain tube's.
+        segment.mass_per_length_kg_m = p.mass_per_length_kg_m;
+        let elements = ((STRING_ELEMENTS as f64 * self.pipe.length_m / 12.5).round() as usize).max(4);
+        Ok(MemberSpec {
+            name: format!("string {}", p.size),
+            start_m: self.start_m(),
+            segment,
+            clamps_m: self.grips.iter().map(|g| g.station_m).collect(),
+            elements,
+            kept_modes: match fidelity {
+                Fidelity::Modal { modes } => Some(modes),
+                _ => None,
+            },
+            damping_ratio: self.damping_ratio,
+        })
+    }
+
+    /// Held by `hand` alone, at arm station `station_m`, gripping the string at its middle.
+    pub fn in_one_hand(&mut self, hand: &str, station_m: f64) {
+        self.grips = vec![Grip { hand: hand.into(), station_m, at_m: 0.5 * self.pipe.length_m }];
     }
 
     /// The friction clamp's parameters, if the string is held by one.

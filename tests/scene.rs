@@ -18,15 +18,24 @@ fn scenario(name: &str) -> Model {
     Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap().model
 }
 
+/// The default arm strikes its stop as the lift ends. With the string lumped it rings on and
+/// strikes again; held flexibly, the string's own mode (below the arm's) takes the arm's ringing
+/// as a tuned mass does, and the arm strikes no more often.
 #[test]
-fn the_default_arm_strikes_its_stop_repeatedly() {
+fn the_default_arm_strikes_its_stop_and_a_flexible_string_calms_it() {
     let s = scenario("default");
-    let (summary, _) = run(&s, None).unwrap();
-    let pair = &summary.pairs[0];
-    assert!(pair.impact_count >= 2, "impacts: {}", pair.impact_count);
+    let (flexible, _) = run(&s, None).unwrap();
+    let mut lumped_model = s.clone();
+    lumped_model.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
+    let (lumped, _) = run(&lumped_model, None).unwrap();
+    let (pair, lumped_pair) = (&flexible.pairs[0], &lumped.pairs[0]);
+    println!("impacts: flexible {}, lumped {}", pair.impact_count, lumped_pair.impact_count);
+    assert!(lumped_pair.impact_count >= 2, "lumped impacts: {}", lumped_pair.impact_count);
+    assert!(pair.impact_count >= 1 && pair.impact_count <= lumped_pair.impact_count);
+    assert!(flexible.residual.damping_ratio > 2.0 * lumped.residual.damping_ratio);
     assert!(pair.peak_force_n > 0.0 && pair.peak_time_s >= s.drive_end_s() - 3.0);
     // The seed's §5: the tip vibrates by less than 2 % of the arm length.
-    assert!(summary.max_w_over_l < 0.02);
+    assert!(flexible.max_w_over_l < 0.02);
 }
 
 /// A rigid arm swinging freely (no gravity) into a pad: the contact sees the arm's effective
@@ -36,6 +45,8 @@ fn the_default_arm_strikes_its_stop_repeatedly() {
 fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
     let mut s = scenario("lowering");
     s.physics.gravity_m_s2 = 0.0;
+    // Rigid through and through: the string lumped too.
+    s.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
     let (k_lin, k_hertz) = (7.5e6, 2.0e9);
     for law in [
         ForceLaw::Linear { stiffness_n_m: k_lin, damping_n_s_m: 0.0 },
@@ -89,6 +100,21 @@ fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
 #[test]
 fn compliant_and_rapier_methods_agree_on_peak_force() {
     let mut s = scenario("default");
+    // The string lumped and the lift in 10 s: a strike of 2.6 kN. (On the default's gentle
+    // strike, 0.23 kN, the pad body of the `rapier` method stops 60 % short: its contact
+    // tolerance is of the order of the pad's 31 µm compression; docs/accuracy.md.)
+    s.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
+    s.drive.motion = DriveSpec::Trapezoidal {
+        start_deg: 0.0,
+        end_deg: 90.0,
+        duration_s: 10.0,
+        accel_deg_s2: None,
+        ramp_fraction: Some(0.2),
+        shaper: None,
+        shaper_hz: None,
+    }
+    .motion()
+    .unwrap();
     s.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
     s.time.settle_s = 3.0;
     let (compliant, _) = run(&s, None).unwrap();
@@ -160,11 +186,13 @@ fn the_friction_clamp_holds_below_the_slip_load_and_slips_above_it() {
 #[test]
 fn the_friction_clamped_heavy_string_lifts_stable_at_the_default_step() {
     let mut s = scenario("string_4half");
-    if let Some(held) = s.payload.string_mut() {
-        held.clamp = Clamp::Friction;
-    }
+    let held = s.payload.string_mut().unwrap();
+    held.in_one_hand("gripper", 9.0);
+    held.model = Some(Fidelity::Rigid);
+    let rigid_clamp = s.clone();
+    s.payload.string_mut().unwrap().clamp = Clamp::Friction;
     let (friction, series) = run(&s, None).unwrap();
-    let (rigid, _) = run(&scenario("string_4half"), None).unwrap();
+    let (rigid, _) = run(&rigid_clamp, None).unwrap();
     let slip = friction.string_slip.unwrap();
     println!(
         "friction clamp: slip {:.3e} m, peak force {:.1} N vs rigid {:.1} N",

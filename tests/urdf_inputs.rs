@@ -36,7 +36,7 @@ fn the_shipped_robots_load() {
     }
     let robot = load_robot(&manifest().join("robots/pipe_arm.urdf")).unwrap();
     let hand = robot.body("hand").unwrap();
-    assert_eq!((hand.station_m, hand.mass_kg, hand.rotary_inertia_kg_m2), (8.2, 180.0, 15.0));
+    assert_eq!((hand.station_m, hand.mass_kg, hand.rotary_inertia_kg_m2), (6.0, 180.0, 15.0));
     let jaws: f64 = robot.carried.iter().filter(|b| b.name.starts_with("jaw")).map(|b| b.mass_kg).sum();
     assert_eq!(jaws, 24.0);
     // The lift joint's limit, as the file states it: effort 400000 N·m, velocity 0.3 rad/s.
@@ -68,8 +68,8 @@ fn the_full_scale_arm_carries_a_cylinder_and_a_servo_that_can_lift_it() {
     assert!(bx.abs() <= 0.6 && (-1.2..=0.0).contains(&by), "base pin {:?}", cylinder.base_pin_m);
     // Gravity moment of the arm with the 4-1/2 in string (200 kg at the gripper, 9 m) held
     // horizontal, summed by hand from the URDF: box 0.018125 m² x 7850 kg/m³ x 9 m at 4.5 m,
-    // hand 180 kg at 8.2 m, palm 96 kg and jaws 24 kg at 9 m.
-    let moment = 9.80665 * (0.018125 * 7850.0 * 9.0 * 4.5 + 180.0 * 8.2 + 120.0 * 9.0 + 200.2 * 9.0);
+    // hand 180 kg at 6.0 m, palm 96 kg and jaws 24 kg at 9 m.
+    let moment = 9.80665 * (0.018125 * 7850.0 * 9.0 * 4.5 + 180.0 * 6.0 + 120.0 * 9.0 + 200.2 * 9.0);
     // A 21 MPa supply holds it with the cap side below supply, the rod side above tank, each
     // with a fifth of the supply in hand: p1 A1 - p2 A2 = F, p1 + p2 = ps (tank at 0).
     let force = moment / cylinder.length_and_arm(0.0).1;
@@ -208,7 +208,7 @@ fn malformed_urdf_is_named() {
         ),
         (
             "off-arm",
-            Box::new(|t: String| t.replace("<origin xyz=\"8.2 0 0\"", "<origin xyz=\"12.2 0 0\"")),
+            Box::new(|t: String| t.replace("<origin xyz=\"6.0 0 0\"", "<origin xyz=\"12.2 0 0\"")),
             &["link[hand]", "off the arm"],
         ),
         (

@@ -134,7 +134,8 @@ pub struct ArmModel {
     pub options: ArmOptions,
     /// Basis Φ: beam DOFs × elastic coordinates.
     pub basis: DMatrix<f64>,
-    /// Clamped natural frequencies of the kept modes, rad/s (empty for rigid and fe).
+    /// Clamped natural frequencies of the kept modes, rad/s (empty for rigid and fe): the arm's,
+    /// then a member's fixed-interface ones.
     pub modal_omegas_rad_s: Vec<f64>,
     /// Highest natural frequency the model keeps, rad/s (0 for rigid): what limits an explicit
     /// integrator's step.
@@ -173,21 +174,38 @@ impl ArmModel {
         options: ArmOptions,
     ) -> Result<Self, ArmError> {
         validate_options(&options)?;
-        let (basis, modal_omegas_rad_s) = match fidelity {
+        let (arm_basis, mut modal_omegas_rad_s) = match fidelity {
             Fidelity::Rigid => (DMatrix::zeros(beam.dofs(), 0), Vec::new()),
             Fidelity::Modal { modes: n } => {
-                if n == 0 || n > beam.dofs() {
+                if n == 0 || n > modes.len() {
                     return Err(ArmError::InvalidParameter {
                         name: "model.modes".into(),
                         value: n as f64,
-                        allowed: format!("1 ..= {} (the FE DOFs of this arm)", beam.dofs()),
+                        allowed: format!("1 ..= {} (the FE DOFs of this arm)", modes.len()),
                     });
                 }
                 let kept = modes.truncated(n);
                 (kept.shapes, kept.omegas_rad_s)
             }
-            Fidelity::Fe => (DMatrix::identity(beam.dofs(), beam.dofs()), Vec::new()),
+            Fidelity::Fe => (beam.arm_ride(), Vec::new()),
         };
+        // A member (a flexible string) adds its kept fixed-interface modes (Craig–Bampton).
+        let kept_member = beam.spec.member.as_ref().and_then(|m| m.kept_modes);
+        let member_basis = beam.member_basis(kept_member);
+        let member_omegas: Vec<f64> =
+            beam.member_modes().map(|m| m.omegas_rad_s[..member_basis.ncols()].to_vec()).unwrap_or_default();
+        let basis = if member_basis.ncols() == 0 {
+            arm_basis
+        } else {
+            let mut both = DMatrix::zeros(beam.dofs(), arm_basis.ncols() + member_basis.ncols());
+            both.columns_mut(0, arm_basis.ncols()).copy_from(&arm_basis);
+            both.columns_mut(arm_basis.ncols(), member_basis.ncols()).copy_from(&member_basis);
+            both
+        };
+        if fidelity != Fidelity::Fe {
+            modal_omegas_rad_s.extend(&member_omegas);
+        }
+        let member_highest = member_omegas.last().copied().unwrap_or(0.0);
         let damping_full = modal_damping_matrix(&beam, &modes, &options.damping_ratios);
         let project = |m: &DMatrix<f64>| basis.transpose() * m * &basis;
         let project_v = |v: &DVector<f64>| basis.transpose() * v;
@@ -202,10 +220,18 @@ impl ArmModel {
             value: f64::NAN,
             allowed: "a positive definite reduced mass".into(),
         })?;
+        let stiffness = project(&beam.stiffness);
+        // With a member the basis is not the eigenbasis: its coupled modes ring above the highest
+        // kept frequency of either part (they repel), and that is what limits an explicit step.
+        let coupled_highest = if beam.member.is_some() && !mass.is_empty() {
+            crate::beam::solve_generalized(&stiffness, &mass)?.omegas_rad_s.last().copied().unwrap_or(0.0)
+        } else {
+            0.0
+        };
         Ok(ArmModel {
             mass,
             mass_inverse,
-            stiffness: project(&beam.stiffness),
+            stiffness,
             damping: project(&damping_full),
             gyroscopic: project(&beam.gyroscopic),
             spin_mass: project(&(&beam.translational_mass - stiffening * &beam.centrifugal_stiffness)),
@@ -218,11 +244,11 @@ impl ArmModel {
             first_moment_kg_m: beam.first_moment_kg_m,
             tip_rows,
             basis,
-            highest_omega_rad_s: match fidelity {
+            highest_omega_rad_s: coupled_highest.max(member_highest).max(match fidelity {
                 Fidelity::Rigid => 0.0,
                 Fidelity::Modal { modes: n } => modes.omegas_rad_s[n - 1],
                 Fidelity::Fe => modes.omegas_rad_s.last().copied().unwrap_or(0.0),
-            },
+            }),
             modal_omegas_rad_s,
             fidelity,
             options,
@@ -322,9 +348,36 @@ fn validate_options(o: &ArmOptions) -> Result<(), ArmError> {
 
 /// Modal damping over every clamped mode: D = M Φ diag(2 ζ_i ω_i) Φᵀ M, so that each fidelity
 /// damps each kept mode at its own ζ_i and modal(n) converges to fe.
+///
+/// With a member (a flexible string) each part damps its own modal coordinates only: the arm's,
+/// q_a = Φ_aᵀ M_g d_a (M_g the arm's mass with the member riding on it), and the member's
+/// deformation relative to that ride, η = Φ_sᵀ M_ss (d_s − Ψ d_a) — never the member's rigid
+/// ride on the hands, which a damping of all its DOFs would brake.
 fn modal_damping_matrix(beam: &BeamModel, modes: &ModalBasis, ratios: &[f64]) -> DMatrix<f64> {
     let zeta = |i: usize| ratios[i.min(ratios.len() - 1)];
     let diag = DVector::from_iterator(modes.len(), (0..modes.len()).map(|i| 2.0 * zeta(i) * modes.omegas_rad_s[i]));
-    let m_phi = &beam.mass * &modes.shapes;
-    &m_phi * DMatrix::from_diagonal(&diag) * m_phi.transpose()
+    let (Some(member), Some(member_modes)) = (&beam.member, beam.member_modes()) else {
+        let m_phi = &beam.mass * &modes.shapes;
+        return &m_phi * DMatrix::from_diagonal(&diag) * m_phi.transpose();
+    };
+    let (n, a) = (beam.dofs(), beam.arm_dofs());
+    let ride = beam.arm_ride();
+    let arm_mass = ride.transpose() * &beam.mass * &ride;
+    // q_a = Φ_aᵀ M_g d_a: rows over every DOF, zero on the member's own.
+    let mut arm_rows = DMatrix::zeros(modes.len(), n);
+    arm_rows.columns_mut(0, a).copy_from(&(modes.shapes.rows(0, a).transpose() * &arm_mass));
+    let mut damping = arm_rows.transpose() * DMatrix::from_diagonal(&diag) * &arm_rows;
+    // η = Φ_sᵀ M_ss (d_s − Ψ d_a).
+    let own = member.own_dofs.clone();
+    let m_ss = beam.mass.view((own.start, own.start), (own.len(), own.len()));
+    let phi_m = member_modes.shapes.transpose() * m_ss;
+    let mut member_rows = DMatrix::zeros(member_modes.len(), n);
+    member_rows.columns_mut(own.start, own.len()).copy_from(&phi_m);
+    let psi = ride.rows(a, own.len());
+    member_rows.columns_mut(0, a).copy_from(&(-(&phi_m * psi)));
+    let zeta_s = member.spec.damping_ratio;
+    let member_diag =
+        DVector::from_iterator(member_modes.len(), member_modes.omegas_rad_s.iter().map(|w| 2.0 * zeta_s * w));
+    damping += member_rows.transpose() * DMatrix::from_diagonal(&member_diag) * &member_rows;
+    damping
 }

@@ -10,6 +10,7 @@
 //! geometric stiffness, gyroscopic matrix, load vectors); `docs/model.md` derives them.
 
 mod element;
+mod member;
 mod modes;
 pub mod section;
 
@@ -18,7 +19,9 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use element::{ELEMENT_DOFS, GAUSS_4, ShapeRows, shape_rows};
+pub use member::{MemberModel, MemberSpec};
 pub use modes::ModalBasis;
+pub(crate) use modes::solve_generalized;
 pub use section::{Material, SectionProperties, SectionShape};
 use section::{non_negative, positive};
 
@@ -69,7 +72,7 @@ impl Segment {
         })
     }
 
-    fn validate(&self) -> Result<(), BeamError> {
+    pub(crate) fn validate(&self) -> Result<(), BeamError> {
         positive("length_m", self.length_m)?;
         positive("axial_rigidity_n", self.axial_rigidity_n)?;
         positive("bending_rigidity_n_m2", self.bending_rigidity_n_m2)?;
@@ -101,12 +104,20 @@ pub struct BeamSpec {
     pub masses: Vec<ConcentratedMass>,
     /// Target element count; each segment and each gap between masses gets at least one.
     pub elements: usize,
+    /// A second beam clamped to the arm (a flexibly modelled pipe string), if any.
+    pub member: Option<MemberSpec>,
 }
 
 impl BeamSpec {
     /// A uniform arm of one segment.
     pub fn uniform(segment: Segment, elements: usize) -> Self {
-        BeamSpec { segments: vec![segment], masses: Vec::new(), elements }
+        BeamSpec { segments: vec![segment], masses: Vec::new(), elements, member: None }
+    }
+
+    /// Adds a member clamped to the arm (builder style).
+    pub fn with_member(mut self, member: MemberSpec) -> Self {
+        self.member = Some(member);
+        self
     }
 
     /// Adds a concentrated mass (builder style).
@@ -139,6 +150,9 @@ impl BeamSpec {
             non_negative(&format!("masses.{}.mass_kg", m.name), m.mass_kg)?;
             non_negative(&format!("masses.{}.rotary_inertia_kg_m2", m.name), m.rotary_inertia_kg_m2)?;
         }
+        if let Some(member) = &self.member {
+            member.validate(length)?;
+        }
         Ok(())
     }
 
@@ -153,6 +167,7 @@ impl BeamSpec {
             breaks.push(x);
         }
         breaks.extend(self.masses.iter().map(|m| m.position_m));
+        breaks.extend(self.member.iter().flat_map(|m| m.clamps_m.iter().copied()));
         breaks.sort_by(f64::total_cmp);
         breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
         let mut nodes = vec![0.0];
@@ -225,6 +240,12 @@ pub struct BeamModel {
     pub first_moment_kg_m: f64,
     /// Moment of inertia of the undeformed arm and its masses about the hub, kg·m².
     pub hub_inertia_kg_m2: f64,
+    /// The member clamped to the arm, meshed, if the spec has one.
+    pub member: Option<MemberModel>,
+    /// The member's static ride on the arm's DOFs, Ψ = −K_ss⁻¹ K_sa (with a member).
+    ride: Option<DMatrix<f64>>,
+    /// The member's fixed-interface modes over its own DOFs (with a member).
+    member_modes: Option<ModalBasis>,
 }
 
 impl BeamModel {
@@ -233,7 +254,13 @@ impl BeamModel {
         spec.validate()?;
         let nodes_x_m = spec.node_positions();
         let elements = mesh_elements(&spec, &nodes_x_m);
-        let n = NODE_DOFS * elements.len();
+        let arm_dofs = NODE_DOFS * elements.len();
+        let tol = 1e-9 * spec.length_m();
+        let member = spec
+            .member
+            .clone()
+            .map(|m| MemberModel::new(m, |x| nodes_x_m.iter().position(|&n| (n - x).abs() <= tol), arm_dofs));
+        let n = member.as_ref().map_or(arm_dofs, |m| m.own_dofs.end);
         let mut model = BeamModel {
             spec,
             nodes_x_m,
@@ -251,15 +278,59 @@ impl BeamModel {
             total_mass_kg: 0.0,
             first_moment_kg_m: 0.0,
             hub_inertia_kg_m2: 0.0,
+            member,
+            ride: None,
+            member_modes: None,
         };
         model.assemble_elements();
+        model.assemble_member();
         model.add_concentrated_masses();
+        if let Some(member) = &model.member {
+            let own = member.own_dofs.clone();
+            model.ride = Some(member::static_ride(&own, arm_dofs, &model.stiffness)?);
+            model.member_modes = Some(member::fixed_interface_modes(&own, &model.stiffness, &model.mass)?);
+        }
         Ok(model)
     }
 
-    /// Number of free DOFs (3 per node past the hub).
+    /// Number of free DOFs: 3 per arm node past the hub, and the member's own.
     pub fn dofs(&self) -> usize {
         self.mass.nrows()
+    }
+
+    /// Number of the arm's own DOFs (the first ones).
+    pub fn arm_dofs(&self) -> usize {
+        NODE_DOFS * self.elements.len()
+    }
+
+    /// The arm's DOFs with the member riding statically on them: T = [I; Ψ] (every DOF × the
+    /// arm's); the identity without a member.
+    pub fn arm_ride(&self) -> DMatrix<f64> {
+        let (n, a) = (self.dofs(), self.arm_dofs());
+        let mut t = DMatrix::zeros(n, a);
+        t.view_mut((0, 0), (a, a)).fill_with_identity();
+        if let Some(ride) = &self.ride {
+            t.view_mut((a, 0), (n - a, a)).copy_from(ride);
+        }
+        t
+    }
+
+    /// The member's fixed-interface modes (clamped at its hands, over its own DOFs), if any.
+    pub fn member_modes(&self) -> Option<&ModalBasis> {
+        self.member_modes.as_ref()
+    }
+
+    /// The member's first `kept` fixed-interface modes as columns over every DOF (zero on the
+    /// arm's); every one when `kept` is `None`. Empty without a member.
+    pub fn member_basis(&self, kept: Option<usize>) -> DMatrix<f64> {
+        let (Some(member), Some(modes)) = (&self.member, &self.member_modes) else {
+            return DMatrix::zeros(self.dofs(), 0);
+        };
+        let k = kept.unwrap_or(modes.len()).min(modes.len());
+        let mut basis = DMatrix::zeros(self.dofs(), k);
+        let own = &member.own_dofs;
+        basis.view_mut((own.start, 0), (own.len(), k)).copy_from(&modes.shapes.columns(0, k));
+        basis
     }
 
     /// Arm length L, m.
@@ -268,39 +339,59 @@ impl BeamModel {
     }
 
     fn assemble_elements(&mut self) {
-        let outboard = OutboardLoads::new(self);
+        let clamp_loads = self.spec.member.as_ref().map(|m| m.clamp_loads()).unwrap_or_default();
+        let outboard = OutboardLoads::new(self, &clamp_loads);
         for (e, el) in self.elements.clone().iter().enumerate() {
-            let dofs = element_dofs(e);
-            let mu = el.mass_per_length_kg_m;
-            for (xi, w) in GAUSS_4 {
-                let r = shape_rows(xi, el.length_m);
-                let x = el.x0_m + xi * el.length_m;
-                let dx = w * el.length_m;
-                let (pc, pg) = (outboard.first_moment(e, x), outboard.mass(e, x));
-                for i in 0..ELEMENT_DOFS {
-                    let Some(gi) = dofs[i] else { continue };
-                    self.coupling[gi] += dx * mu * x * r.v[i];
-                    self.axial_moment[gi] += dx * mu * x * r.u[i];
-                    self.axial_mass[gi] += dx * mu * r.u[i];
-                    self.transverse_mass[gi] += dx * mu * r.v[i];
-                    for (j, gj) in dofs.iter().enumerate() {
-                        let Some(gj) = *gj else { continue };
-                        let m = mu * (r.u[i] * r.u[j] + r.v[i] * r.v[j]);
-                        self.translational_mass[(gi, gj)] += dx * m;
-                        self.stiffness[(gi, gj)] += dx
-                            * (el.axial_rigidity_n * r.du[i] * r.du[j]
-                                + el.bending_rigidity_n_m2 * r.ddv[i] * r.ddv[j]);
-                        self.centrifugal_stiffness[(gi, gj)] += dx * pc * r.dv[i] * r.dv[j];
-                        self.gravity_stiffness[(gi, gj)] += dx * pg * r.dv[i] * r.dv[j];
-                        self.gyroscopic[(gi, gj)] += dx * mu * (r.v[i] * r.u[j] - r.u[i] * r.v[j]);
-                    }
+            self.assemble_element(el, element_dofs(e), |x| (outboard.first_moment(e, x), outboard.mass(e, x)));
+        }
+    }
+
+    fn assemble_member(&mut self) {
+        let Some(member) = self.member.clone() else { return };
+        for (el, dofs) in member.elements.iter().zip(&member.element_dofs) {
+            self.assemble_element(el, *dofs, |x| {
+                let (mass, first_moment) = member.spec.axial_load(x);
+                (first_moment, mass)
+            });
+        }
+    }
+
+    /// Adds one element's integrals; `axial(x)` gives the axial load at x per unit θ̇² (kg·m)
+    /// and per unit g (kg).
+    fn assemble_element(
+        &mut self,
+        el: &Element,
+        dofs: [Option<usize>; ELEMENT_DOFS],
+        axial: impl Fn(f64) -> (f64, f64),
+    ) {
+        let mu = el.mass_per_length_kg_m;
+        for (xi, w) in GAUSS_4 {
+            let r = shape_rows(xi, el.length_m);
+            let x = el.x0_m + xi * el.length_m;
+            let dx = w * el.length_m;
+            let (pc, pg) = axial(x);
+            for i in 0..ELEMENT_DOFS {
+                let Some(gi) = dofs[i] else { continue };
+                self.coupling[gi] += dx * mu * x * r.v[i];
+                self.axial_moment[gi] += dx * mu * x * r.u[i];
+                self.axial_mass[gi] += dx * mu * r.u[i];
+                self.transverse_mass[gi] += dx * mu * r.v[i];
+                for (j, gj) in dofs.iter().enumerate() {
+                    let Some(gj) = *gj else { continue };
+                    let m = mu * (r.u[i] * r.u[j] + r.v[i] * r.v[j]);
+                    self.translational_mass[(gi, gj)] += dx * m;
+                    self.stiffness[(gi, gj)] +=
+                        dx * (el.axial_rigidity_n * r.du[i] * r.du[j] + el.bending_rigidity_n_m2 * r.ddv[i] * r.ddv[j]);
+                    self.centrifugal_stiffness[(gi, gj)] += dx * pc * r.dv[i] * r.dv[j];
+                    self.gravity_stiffness[(gi, gj)] += dx * pg * r.dv[i] * r.dv[j];
+                    self.gyroscopic[(gi, gj)] += dx * mu * (r.v[i] * r.u[j] - r.u[i] * r.v[j]);
                 }
             }
-            let (x0, x1) = (el.x0_m, el.x0_m + el.length_m);
-            self.total_mass_kg += mu * (x1 - x0);
-            self.first_moment_kg_m += mu * (x1 * x1 - x0 * x0) / 2.0;
-            self.hub_inertia_kg_m2 += mu * (x1.powi(3) - x0.powi(3)) / 3.0;
         }
+        let (x0, x1) = (el.x0_m, el.x0_m + el.length_m);
+        self.total_mass_kg += mu * (x1 - x0);
+        self.first_moment_kg_m += mu * (x1 * x1 - x0 * x0) / 2.0;
+        self.hub_inertia_kg_m2 += mu * (x1.powi(3) - x0.powi(3)) / 3.0;
     }
 
     fn add_concentrated_masses(&mut self) {
@@ -404,7 +495,9 @@ struct OutboardLoads {
 }
 
 impl OutboardLoads {
-    fn new(model: &BeamModel) -> Self {
+    /// `point_loads`: (x, mass, first moment) delivered to the arm's nodes besides its masses
+    /// (a member's load at its clamps).
+    fn new(model: &BeamModel, point_loads: &[(f64, f64, f64)]) -> Self {
         let n = model.elements.len();
         let mut beyond = vec![(0.0, 0.0); n];
         let mut acc = (0.0, 0.0);
@@ -413,6 +506,12 @@ impl OutboardLoads {
             for m in model.spec.masses.iter().filter(|m| (m.position_m - tip).abs() <= 1e-9 * model.length_m()) {
                 acc.0 += m.mass_kg;
                 acc.1 += m.mass_kg * m.position_m;
+            }
+            for (_, mass, first_moment) in
+                point_loads.iter().filter(|(x, ..)| (x - tip).abs() <= 1e-9 * model.length_m())
+            {
+                acc.0 += mass;
+                acc.1 += first_moment;
             }
             beyond[e] = acc;
             let el = &model.elements[e];

@@ -36,9 +36,18 @@ impl ModalBasis {
 }
 
 impl BeamModel {
-    /// All eigenmodes of the arm clamped at a hub at rest, without gravity.
+    /// All eigenmodes of the arm clamped at a hub at rest, without gravity. With a member (a
+    /// flexibly modelled string) these are the arm's modes with the member riding statically on
+    /// its clamps (the Craig–Bampton boundary set, [`BeamModel::arm_ride`]), one per arm DOF, as
+    /// columns over every DOF; the member's own modes are [`BeamModel::member_modes`].
     pub fn modes(&self) -> Result<ModalBasis, BeamError> {
-        solve_generalized(&self.stiffness, &self.mass)
+        if self.member.is_none() {
+            return solve_generalized(&self.stiffness, &self.mass);
+        }
+        let ride = self.arm_ride();
+        let project = |m: &DMatrix<f64>| ride.transpose() * m * &ride;
+        let modes = solve_generalized(&project(&self.stiffness), &project(&self.mass))?;
+        Ok(ModalBasis { shapes: &ride * modes.shapes, omegas_rad_s: modes.omegas_rad_s })
     }
 
     /// Eigenmodes of the arm on a hub spinning steadily at `spin_rad_s` (no gravity):
@@ -67,7 +76,7 @@ impl BeamModel {
 }
 
 /// Solves K φ = λ M φ for symmetric K and positive-definite M through M = L Lᵀ.
-fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, BeamError> {
+pub(crate) fn solve_generalized(k: &DMatrix<f64>, m: &DMatrix<f64>) -> Result<ModalBasis, BeamError> {
     let chol = m
         .clone()
         .cholesky()

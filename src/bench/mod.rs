@@ -63,6 +63,8 @@ pub struct Variant {
     pub linear_pads: bool,
     /// How the string is held.
     pub clamp: Clamp,
+    /// The held string's fidelity (`None`: the scene's own).
+    pub string: Option<Fidelity>,
 }
 
 impl Variant {
@@ -85,6 +87,9 @@ impl Variant {
         if self.clamp == Clamp::Friction {
             label += " friction";
         }
+        if let Some(string) = self.string {
+            label += &format!(" string {string}");
+        }
         label
     }
 
@@ -106,6 +111,9 @@ impl Variant {
         s.contact.method = self.contact;
         if let Some(held) = s.payload.string_mut() {
             held.clamp = self.clamp;
+            if self.string.is_some() {
+                held.model = self.string;
+            }
         }
         if self.linear_pads {
             for (pad, law) in s.dampeners.iter_mut().zip(linear_laws) {
@@ -220,6 +228,8 @@ pub struct BenchResult {
     pub base_step_s: f64,
     /// The fidelity `auto` chose.
     pub auto_fidelity: Fidelity,
+    /// The string fidelity `auto` chose (`None` without a string).
+    pub auto_string: Option<Fidelity>,
     /// The references, one per physics.
     pub references: Vec<Reference>,
     /// Every grid point.
@@ -248,6 +258,7 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
         contact: ContactMethod::Compliant,
         linear_pads: false,
         clamp: base_clamp.unwrap_or_default(),
+        string: None,
     };
     let mut out = Vec::new();
     let modal_counts: Vec<usize> = if quick { vec![1, 3, 8] } else { (1..=8).collect() };
@@ -301,6 +312,15 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
                 ..base.clone()
             }));
         }
+    }
+    if base_clamp == Some(Clamp::Rigid) {
+        // The string's fidelity with the arm at auto's: where a rigid (lumped) string is as good
+        // as a flexible one, against the reference's fe string.
+        let counts: &[usize] = if quick { &[1, 4] } else { &[1, 2, 4, 8] };
+        let strings = std::iter::once(Fidelity::Rigid)
+            .chain(counts.iter().map(|&modes| Fidelity::Modal { modes }))
+            .chain(std::iter::once(Fidelity::Fe));
+        out.extend(strings.map(|string| Variant { axis: "string".into(), string: Some(string), ..implicit.clone() }));
     }
     if let Some(clamp) = base_clamp {
         let other = if clamp == Clamp::Rigid { Clamp::Friction } else { Clamp::Rigid };
@@ -436,6 +456,8 @@ pub fn reference(
         free_step_s: None,
         tolerance_m: None,
         clamp: Clamp::Rigid,
+        // The string converged too: every FE DOF of it, held rigidly.
+        string: base.payload.string().map(|_| Fidelity::Fe),
         ..physics_of.clone()
     };
     let mut steps = Vec::new();
@@ -544,6 +566,10 @@ pub fn bench(
         scenario: model.name.clone(),
         base_step_s: model.time.step_s,
         auto_fidelity: auto,
+        auto_string: match model.payload.string() {
+            Some(_) => Some(model.string_fidelity().map_err(|e| labelled("string model choice")(e.into()))?.fidelity),
+            None => None,
+        },
         references,
         points,
         stability,

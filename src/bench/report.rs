@@ -109,12 +109,13 @@ fn ms(h: f64) -> String {
 /// The Markdown report of a scene: reference and its convergence, the grid, the stability map.
 pub fn report_markdown(result: &BenchResult, command: &str) -> String {
     let mut out = format!(
-        "# Bench of `{}`\n\nWritten by `{command}`; the scene's own step is {}, `auto` chooses {}. \
+        "# Bench of `{}`\n\nWritten by `{command}`; the scene's own step is {}, `auto` chooses {}{}. \
          Costs are wall time per simulated second on one thread (median of repeats), errors are against the \
          reference of the same physics.\n\n## References\n\n",
         result.scenario,
         ms(result.base_step_s),
-        result.auto_fidelity
+        result.auto_fidelity,
+        result.auto_string.map_or(String::new(), |s| format!(" and the string {s}"))
     );
     out += "| physics | reference | peak force (N) | frequency (Hz) | Richardson: F(h), F(2h), F(4h) (N) | observed order | est. error of F(h) | doubled mesh |\n|---|---|---|---|---|---|---|---|\n";
     for r in &result.references {

@@ -141,6 +141,10 @@ impl Writer<'_> {
         if !s.string_slip_m.is_empty() {
             self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
         }
+        if !s.string_tip_deflection_m.is_empty() {
+            self.send("plots/string/tip_deflection", s.string_tip_deflection_m.iter().copied())?;
+            self.send("plots/string/bending_stress", s.string_stress_pa.iter().copied())?;
+        }
         for (k, (name, forces)) in run.pad_names.iter().zip(&s.pad_force_n).enumerate() {
             let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
             self.send_force(&force_entity(name), forces, impacts)?;
@@ -230,6 +234,15 @@ impl Writer<'_> {
             .with_strips(magnified.collect::<Vec<_>>())
             .columns(std::iter::repeat_n(1, frames.len()))?;
         self.send_columns(&centreline, times(), columns)?;
+        if frames.iter().any(|f| !f.string_centreline.is_empty()) {
+            let strips = frames.iter().map(|f| string_points(layout, f));
+            let columns = rerun::LineStrips3D::update_fields()
+                .with_strips(strips.collect::<Vec<_>>())
+                .with_colors(vec![rerun::Color::from_rgb(30, 110, 200); frames.len()])
+                .with_radii(vec![rerun::Radius::new_scene_units(0.04); frames.len()])
+                .columns(std::iter::repeat_n(1, frames.len()))?;
+            self.send_columns("world/string", times(), columns)?;
+        }
         let origins: Vec<[f32; 3]> =
             frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
         let vectors: Vec<[f32; 3]> = frames
@@ -371,6 +384,18 @@ fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[
             let (bx, by) = (x + magnify * u, magnify * v);
             [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
         })
+        .collect()
+}
+
+/// The held string's deformed centreline at true scale, on its axis off the lift plane.
+fn string_points(layout: &SceneLayout, frame: &Frame) -> Vec<[f32; 3]> {
+    let (s, c) = frame.hub_angle_rad.sin_cos();
+    let p = layout.pivot_m;
+    let z = (p[2] + layout.string_normal_offset_m) as f32;
+    frame
+        .string_centreline
+        .iter()
+        .map(|[x, y]| [(p[0] + c * x - s * y) as f32, (p[1] + s * x + c * y) as f32, z])
         .collect()
 }
 

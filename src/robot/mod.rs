@@ -212,7 +212,7 @@ impl Robot {
             })
             .chain(extra.iter().cloned())
             .collect();
-        let spec = BeamSpec { segments, masses, elements: self.arm.elements };
+        let spec = BeamSpec { segments, masses, elements: self.arm.elements, member: None };
         spec.validate()?;
         Ok(spec)
     }

@@ -451,9 +451,14 @@ mod tests {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")
     }
 
+    /// The default scenario with `table` appended, its string lumped as the drive scenes' are.
     fn default_with(table: &str) -> ScenarioSpec {
         let text = std::fs::read_to_string(default_path()).unwrap();
-        toml::from_str(&(text + table)).unwrap()
+        let mut spec: ScenarioSpec = toml::from_str(&(text + table)).unwrap();
+        if let crate::scenario::PayloadSpec::String { model, .. } = &mut spec.payload {
+            *model = crate::scenario::ModelSpec::Rigid;
+        }
+        spec
     }
 
     #[test]
@@ -473,7 +478,7 @@ mod tests {
         let mut spec = default_with(table);
         // The hydraulic scenes' step: RK4 at the default's 3 ms would be close to the limit the
         // drive's fastest pole sets (a checked error past it).
-        spec.time.step_s = 0.0025;
+        spec.time.step_s = 0.002;
         let canonical = toml::to_string(&spec).unwrap();
         assert_eq!(toml::from_str::<ScenarioSpec>(&canonical).unwrap(), spec, "{canonical}");
         let scenario = Scenario::from_spec(&default_path(), spec).unwrap();
@@ -486,7 +491,7 @@ mod tests {
     #[test]
     fn a_servo_table_resolves_on_the_robots_servo() {
         let mut spec = default_with("\n[actuator]\nkind = \"servo\"\ncontroller = { kp = 2e6, ki = 2e6, kd = 5e5 }\n");
-        spec.time.step_s = 0.0025;
+        spec.time.step_s = 0.002;
         let scenario = Scenario::from_spec(&default_path(), spec).unwrap();
         let Actuator::Servo(drive) = &scenario.model.drive.actuator else { panic!("not a servo") };
         assert_eq!(Some(drive.machine), scenario.model.robot.lift.servo);

@@ -115,7 +115,7 @@ pub fn shapes_of_robot(model: &Model, beam: &BeamModel) -> Vec<ArmPiece> {
         }
     }
     if let Some(held) = model.payload.string()
-        && let Some(clamp) = robot.body(&held.body)
+        && let Some(clamp) = robot.body(&held.palm().hand)
     {
         // The string's axis runs along the arm, midway between the jaws.
         let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
@@ -129,7 +129,7 @@ pub fn shapes_of_robot(model: &Model, beam: &BeamModel) -> Vec<ArmPiece> {
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
         pieces.push(ArmPiece::new(
             "string",
-            [clamp.station_m, lateral, normal],
+            [held.centre_m(), lateral, normal],
             along_arm,
             [radius, half_length, radius],
             SharedShape::cylinder(half_length, radius),

@@ -51,6 +51,10 @@ pub struct Scene {
     spans: Vec<Range<usize>>,
     /// Stations at which a frame samples the centreline, with their rows.
     centreline: Vec<(f64, crate::arm::StationRows)>,
+    /// The held string's probe, if the arm holds one.
+    pub string: Option<crate::sensor::string::StringProbe>,
+    /// The string's axis off the lift plane, m.
+    string_normal_offset_m: f64,
 }
 
 /// Stations along the arm at which a frame samples the centreline.
@@ -66,6 +70,8 @@ pub enum SceneError {
     #[error(transparent)]
     UnsupportedPad(#[from] UnsupportedPad),
     /// A friction clamp on a body without a collision shape to carry its jaws.
+    #[error("key `payload.grips`: a friction clamp holds the string in one hand's jaws; it has {0} grips")]
+    FrictionClampGrips(usize),
     #[error("key `payload.at`: `{0}` has no collision shape to carry the jaws")]
     ClampWithoutPalm(String),
     /// The run's energy grew without a source, or its values stopped being finite.
@@ -94,13 +100,20 @@ impl Scene {
     pub fn with_arm(model: &Model, arm_model: ArmModel) -> Result<Self, SceneError> {
         let arm = ArmSimulation::new(arm_model, model.hub_drive(), model.integrator)?;
         let friction = model.payload.string().and_then(|held| held.friction_clamp().map(|_| held));
+        if let Some(held) = friction.filter(|h| h.grips.len() > 1) {
+            return Err(SceneError::FrictionClampGrips(held.grips.len()));
+        }
         let jaw_names: Vec<&str> =
             model.robot.carried.iter().filter(|b| b.mount.is_prismatic()).map(|b| b.name.as_str()).collect();
         // With a friction clamp, string and jaws are rapier bodies of the clamp's own.
         let (clamped, riding): (Vec<_>, Vec<_>) = shapes_of_robot(model, &arm.arm.beam)
             .into_iter()
             .partition(|p| friction.is_some() && (p.name == "string" || jaw_names.contains(&p.name.as_str())));
+        let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
         let mut pieces = riding;
+        let string_normal_offset_m = pieces.iter().find(|p| p.name == "string").map_or(0.0, |p| p.normal_offset_m);
+        // A flexible string is drawn as its deformed centreline, not as a rigid piece.
+        pieces.retain(|p| !(p.name == "string" && string.as_ref().is_some_and(|s| s.is_flexible())));
         for piece in &mut pieces {
             piece.rows = arm.arm.station_rows(piece.station_m);
         }
@@ -119,6 +132,8 @@ impl Scene {
             sources: Vec::new(),
             spans: Vec::new(),
             centreline,
+            string,
+            string_normal_offset_m,
         };
         let pads: Box<dyn ContactSource> = match model.contact.method {
             ContactMethod::Compliant => Box::new(CompliantPads::new(pads)),
@@ -131,8 +146,8 @@ impl Scene {
             let palm_index = scene
                 .pieces
                 .iter()
-                .position(|p| p.name == held.body)
-                .ok_or_else(|| SceneError::ClampWithoutPalm(held.body.clone()))?;
+                .position(|p| p.name == held.palm().hand)
+                .ok_or_else(|| SceneError::ClampWithoutPalm(held.palm().hand.clone()))?;
             let palm = &scene.pieces[palm_index];
             let palm_pose = scene.with_view(|view| view.pose(palm));
             let at = ClampPlacement { palm_index, palm, palm_pose, string };
@@ -265,6 +280,7 @@ impl Scene {
             pads: pads.collect(),
             pivot_m: self.pivot_m,
             length_m: self.arm.arm.length_m(),
+            string_normal_offset_m: self.string_normal_offset_m,
             cylinder: match self.arm.drive.plant().map(|p| &p.actuator) {
                 Some(crate::actuator::Actuator::Hydraulic(h)) => Some(h.cylinder),
                 _ => None,
@@ -294,7 +310,16 @@ impl Scene {
                 (*x, [u, v])
             })
             .collect();
-        Frame { t_s: self.arm.time_s(), hub_angle_rad: hub.angle_rad, pieces, pads, contacts, centreline }
+        let string_centreline = self.string.as_ref().map(|s| s.centreline_hub_m(&q)).unwrap_or_default();
+        Frame {
+            t_s: self.arm.time_s(),
+            hub_angle_rad: hub.angle_rad,
+            pieces,
+            pads,
+            contacts,
+            centreline,
+            string_centreline,
+        }
     }
 }
 
@@ -319,6 +344,8 @@ pub struct SceneLayout {
     pub pivot_m: [f64; 3],
     /// Arm length, m.
     pub length_m: f64,
+    /// A held string's axis off the lift plane, m.
+    pub string_normal_offset_m: f64,
     /// The hydraulic cylinder that drives the hub, if one does.
     pub cylinder: Option<crate::actuator::Cylinder>,
 }
@@ -338,4 +365,6 @@ pub struct Frame {
     pub contacts: Vec<(String, [f64; 3], [f64; 2])>,
     /// Centreline: station (m) and displacement in the hub frame (axial, transverse, m).
     pub centreline: Vec<(f64, [f64; 2])>,
+    /// The held string's deformed centreline, hub-frame points (x, y), m (empty without one).
+    pub string_centreline: Vec<[f64; 2]>,
 }

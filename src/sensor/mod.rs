@@ -15,6 +15,7 @@
 //! few modes give it right (the curvature of a truncated modal sum converges slowly).
 
 pub mod probe;
+pub mod string;
 
 use serde::{Deserialize, Serialize};
 

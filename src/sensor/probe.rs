@@ -16,7 +16,8 @@
 //! - Strain gauge: the moment about the section point r_s of every load on the arm outboard of
 //!   the station — the d'Alembert and gravity loads dm (g_b − a) of the arm's mass (Gauss
 //!   quadrature over the elements) and of the concentrated masses, their rotary inertia
-//!   −J (θ̈ + φ̈), and the pads' contact forces — is M_o; the section carries −M_o, and the
+//!   −J (θ̈ + φ̈), and the pads' contact forces — is M_o (a flexible string held by hands all
+//!   outboard of the gauge counts as Gauss points of its own elements, which move with it); the section carries −M_o, and the
 //!   bending moment reported is M = −M_o (positive when the upper face is in tension). The
 //!   beam's sections carry no rotary inertia of their own (Euler–Bernoulli), as in the model.
 //! - Encoder: θ and θ̇.
@@ -183,6 +184,23 @@ fn outboard_mass_points(arm: &ArmModel, station_m: f64) -> Vec<MassPoint> {
     let tolerance = 1e-9 * arm.length_m();
     for mass in arm.beam.spec.masses.iter().filter(|m| m.position_m > station_m + tolerance) {
         points.push(point(mass.position_m, mass.mass_kg, mass.rotary_inertia_kg_m2));
+    }
+    // A string held by hands all outboard of the station hangs on the outboard part whole (one
+    // straddling the station is refused by the scenario's checks: its clamps' reactions would be
+    // needed).
+    if let Some(member) =
+        arm.beam.member.as_ref().filter(|m| m.spec.clamps_m.iter().all(|&c| c > station_m + tolerance))
+    {
+        let n = arm.beam.dofs();
+        for element in &member.elements {
+            for (xi, weight) in GAUSS_4 {
+                let x_m = element.x0_m + xi * element.length_m;
+                let [u, v, phi, _] = member.point_rows(x_m, n);
+                let rows = StationRows([u, v, phi].map(|r| arm.basis.tr_mul(&r)));
+                let mass_kg = weight * element.length_m * element.mass_per_length_kg_m;
+                points.push(MassPoint { x_m, mass_kg, rotary_inertia_kg_m2: 0.0, rows });
+            }
+        }
     }
     points
 }
