@@ -1,7 +1,8 @@
 //! Cost of one time step: the arm alone at each fidelity, and the whole scene (rapier world,
 //! pads) with each contact method; and of the speed target's whole run: the default scene read,
 //! simulated for its 20 s and recorded, as `pipearm run` does it; and the actuated scenes'
-//! whole runs against the same scenes with the ideal drive (`-- actuated_run`).
+//! whole runs against the same scenes with the ideal drive (`-- actuated_run`); and the default
+//! scene with its string as `auto` models it against the string lumped (`-- string_run`).
 //!
 //! `cargo bench --bench step` (one core: `taskset -c 0 cargo bench --bench step -- default_run`);
 //! the figures are quoted in docs/model.md, docs/accuracy.md and docs/performance.md.
@@ -145,5 +146,39 @@ fn actuated_run(c: &mut Criterion) {
     std::fs::remove_dir_all(&out).ok();
 }
 
-criterion_group!(benches, arm_step, scene_step, default_run, actuated_run);
+/// The default scene with the string `auto` models (a beam of its own) against the same scene
+/// with the string lumped (`rigid`), each in-process from reading the scenario to the recording
+/// and summary written: the string's price (`-- string_run`; goal ≤ 1.5×).
+fn string_run(c: &mut Criterion) {
+    use pipearm::record::{write_recording, write_summary};
+    use pipearm::run::{RunOptions, run_with};
+    use pipearm::scenario::{ModelSpec, PayloadSpec};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let out = std::env::temp_dir().join(format!("pipearm-bench-string-{}", std::process::id()));
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let mut group = c.benchmark_group("string_run");
+    group.sample_size(40);
+    for (label, string) in [("auto", ModelSpec::Auto), ("rigid", ModelSpec::Rigid)] {
+        let load = || {
+            let mut spec = Scenario::load(&path).unwrap().spec;
+            if let PayloadSpec::String { model, .. } = &mut spec.payload {
+                *model = string;
+            }
+            Scenario::from_spec(&path, spec).unwrap()
+        };
+        group.bench_function(label, |b| {
+            b.iter(|| {
+                let scenario = load();
+                let (summary, series) = run_with(&scenario.model, &options).unwrap();
+                let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+                write_recording(&out.join("default.rrd"), &summary, &series, &pads).unwrap();
+                write_summary(&out.join("default.summary.json"), &summary).unwrap();
+            })
+        });
+    }
+    group.finish();
+    std::fs::remove_dir_all(&out).ok();
+}
+
+criterion_group!(benches, arm_step, scene_step, default_run, actuated_run, string_run);
 criterion_main!(benches);

@@ -619,8 +619,10 @@ fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result
     });
     let [_, tip_v, _] = beam.point_rows(l);
     let stiffening_note = if stiffening { "" } else { " without stiffening" };
+    let string_dofs =
+        beam.member.as_ref().map_or(String::new(), |m| format!(", {} of them the string's", m.own_dofs.len()));
     println!(
-        "arm of {} ({} elements, L = {l} m, {} DOFs), spin {spin_rad_s} rad/s{stiffening_note}",
+        "arm of {} ({} elements, L = {l} m, {} DOFs{string_dofs}), spin {spin_rad_s} rad/s{stiffening_note}",
         scenario.model.robot.name,
         beam.elements.len(),
         beam.dofs()
@@ -632,6 +634,16 @@ fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result
         let lambda_l = (w * w * mu / ei).powf(0.25) * l;
         let tip_mass = if tip.abs() > 1e-12 { format!("{:.4e}", 1.0 / (tip * tip)) } else { "axial/no tip".into() };
         println!("{:>4} {:>12.5} {:>12.5} {:>10.5} {:>20}", i + 1, w / std::f64::consts::TAU, w, lambda_l, tip_mass);
+    }
+    if let (Some(member), Some(string)) = (&beam.member, beam.member_modes()) {
+        // The modes above are the arm's with the string riding on its hands; the string's own:
+        let listed: Vec<String> = string.frequencies_hz().iter().take(count).map(|f| format!("{f:.3}")).collect();
+        println!(
+            "{} held in its hands (at {:?} m): [{}] Hz",
+            member.spec.name,
+            member.spec.clamps_m,
+            listed.join(", ")
+        );
     }
     let w = beam.gravity_tip_deflection_m(STANDARD_GRAVITY_M_S2)?;
     println!(

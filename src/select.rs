@@ -154,16 +154,15 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
 }
 
 /// A held string's bending modes count when they lie below this multiple of the arm's first
-/// frequency, whenever the scene makes the arm ring: a string mode that close to the arm's takes
-/// part in its first mode as a tuned mass does (`pipearm bench --string-models` measures where a rigid string
+/// frequency, whatever the scene's band: a string mode that close to the arm's takes part in its
+/// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it (`pipearm bench --string-models` measures where a rigid string
 /// stays within 1 % of the converged peak force, docs/scene.md).
-pub const STRING_MODE_MARGIN: f64 = 3.0;
+pub const STRING_MODE_MARGIN: f64 = 5.0;
 
 /// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped
-/// at its centre) when every bending mode of the string held in its hands lies above the band
-/// the scene excites and, if the scene makes the arm ring (its band reaches the arm's first mode
-/// or the drive's acceleration jumps), above [`STRING_MODE_MARGIN`] times the arm's first
-/// frequency; else `modal(k)` with the k string modes below that. A friction-clamped string is rigid. Rigid
+/// at its centre) when every bending mode of the string held in its hands lies above both the
+/// band the scene excites and [`STRING_MODE_MARGIN`] times the arm's first frequency, else
+/// `modal(k)` with the k string modes below that. A friction-clamped string is rigid. Rigid
 /// without a string.
 pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
     let choice = |fidelity, reason: &str| Ok(Choice { fidelity, reason: reason.into() });
@@ -179,12 +178,7 @@ pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
     let string_hz = beam.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
     let arm_first_hz = arm_modes.frequencies_hz().first().copied().unwrap_or(0.0);
     let band_hz = excited_band(model, &beam, &arm_modes)?.band_hz;
-    // The arm rings at its first mode when the band reaches it or the drive's acceleration jumps
-    // (a jerk-limited drive, a hold or a shaped move leave it quiet); a string mode near it then
-    // rings with it.
-    let jerk_limited = matches!(model.drive.motion.name(), "s-curve" | "hold") || model.drive.motion.shaper().is_some();
-    let arm_rings = band_hz >= arm_first_hz || !jerk_limited;
-    let limit_hz = if arm_rings { band_hz.max(STRING_MODE_MARGIN * arm_first_hz) } else { band_hz };
+    let limit_hz = band_hz.max(STRING_MODE_MARGIN * arm_first_hz);
     let k = string_hz.iter().take_while(|f| **f <= limit_hz).count();
     let first = string_hz.first().copied().unwrap_or(f64::INFINITY);
     let why = format!(

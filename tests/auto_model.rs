@@ -95,9 +95,9 @@ fn motion_advice_flags_drives_beyond_the_seed_limits() {
 }
 
 /// The string's `auto` agrees with the converged answer: where it keeps the string rigid, the
-/// rigid string is within 1 % of the fe string on peak force, peak tip deflection and the
-/// residual vibration's amplitude; where it keeps modes, the rigid string is off by more than
-/// 1 % on one of them and auto's modes are within 2 % on all.
+/// rigid string is within 1 % of the fe string on peak force and peak tip deflection (without a
+/// pad: on peak tip deflection and the residual vibration's amplitude); where it keeps modes, the
+/// rigid string is off by more than 1 % and auto's modes are within 2 %.
 #[test]
 fn the_strings_auto_is_rigid_exactly_where_a_rigid_string_is_within_one_percent() {
     let default = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model;
@@ -137,10 +137,11 @@ fn the_strings_auto_is_rigid_exactly_where_a_rigid_string_is_within_one_percent(
             run(&m, Some(arm)).unwrap().0
         };
         let (fe, rigid, chosen) = (with_string(Fidelity::Fe), with_string(Fidelity::Rigid), with_string(auto.fidelity));
-        // The residual's amplitude too: without a pad it is what a string mode changes.
+        // A scene with a pad is judged on its peak force (and peak deflection); one without, on
+        // what a string mode changes there: the residual vibration's amplitude.
         let off = |a: &RunSummary, r: &RunSummary| {
-            let rel = |x: f64, r: f64| (x - r).abs() / r.abs().max(1e-12);
-            off(a, r).max(rel(a.residual.amplitude_m, r.residual.amplitude_m))
+            let residual = (a.residual.amplitude_m - r.residual.amplitude_m).abs() / r.residual.amplitude_m.abs();
+            if peak_force(r) > 0.0 { off(a, r) } else { off(a, r).max(residual) }
         };
         let rigid_off = off(&rigid, &fe);
         println!(

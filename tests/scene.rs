@@ -18,24 +18,15 @@ fn scenario(name: &str) -> Model {
     Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"))).unwrap().model
 }
 
-/// The default arm strikes its stop as the lift ends. With the string lumped it rings on and
-/// strikes again; held flexibly, the string's own mode (below the arm's) takes the arm's ringing
-/// as a tuned mass does, and the arm strikes no more often.
 #[test]
-fn the_default_arm_strikes_its_stop_and_a_flexible_string_calms_it() {
+fn the_default_arm_strikes_its_stop_repeatedly() {
     let s = scenario("default");
-    let (flexible, _) = run(&s, None).unwrap();
-    let mut lumped_model = s.clone();
-    lumped_model.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
-    let (lumped, _) = run(&lumped_model, None).unwrap();
-    let (pair, lumped_pair) = (&flexible.pairs[0], &lumped.pairs[0]);
-    println!("impacts: flexible {}, lumped {}", pair.impact_count, lumped_pair.impact_count);
-    assert!(lumped_pair.impact_count >= 2, "lumped impacts: {}", lumped_pair.impact_count);
-    assert!(pair.impact_count >= 1 && pair.impact_count <= lumped_pair.impact_count);
-    assert!(flexible.residual.damping_ratio > 2.0 * lumped.residual.damping_ratio);
+    let (summary, _) = run(&s, None).unwrap();
+    let pair = &summary.pairs[0];
+    assert!(pair.impact_count >= 2, "impacts: {}", pair.impact_count);
     assert!(pair.peak_force_n > 0.0 && pair.peak_time_s >= s.drive_end_s() - 3.0);
     // The seed's §5: the tip vibrates by less than 2 % of the arm length.
-    assert!(flexible.max_w_over_l < 0.02);
+    assert!(summary.max_w_over_l < 0.02);
 }
 
 /// A rigid arm swinging freely (no gravity) into a pad: the contact sees the arm's effective
@@ -152,6 +143,7 @@ fn friction_hold(squeeze_n: f64, seconds: f64) -> (f64, f64) {
     let mut s = scenario("default");
     let mu = 0.3;
     let held = s.payload.string_mut().unwrap();
+    held.in_one_hand("gripper", 9.0);
     held.clamp = Clamp::Friction;
     held.friction.friction_coefficient = mu;
     held.friction.squeeze_n = Some(squeeze_n);
