@@ -268,8 +268,8 @@ impl HeldString {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Clamp {
-    /// Welded to the gripper: string and jaws are lumped into the arm's masses, their shapes
-    /// follow the gripper.
+    /// Held fast by its hands: at its `model` fidelity the string rides on them, lumped into the
+    /// arm's masses (`rigid`) or as a beam clamped at each hand (`modal`, `fe`).
     #[default]
     Rigid,
     /// Held by friction: the jaws close on force-limited prismatic motors and squeeze a dynamic

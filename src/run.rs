@@ -327,14 +327,29 @@ pub fn run_partial(model: &Model, options: &RunOptions) -> (Result<RunSummary, S
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
 fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
     // The beam and its modes, built once for the model choice and the arm.
-    let beam = crate::beam::BeamModel::new(model.beam_spec()?)?;
-    let modes = beam.modes()?;
+    // The string's fidelity, chosen once for the beam and the summary; the beam `auto` built to
+    // choose it is the run's.
+    let (string_choice, built) = match model.payload.string() {
+        Some(_) => {
+            let (choice, built) = crate::select::string_fidelity_and_beam(model)?;
+            (Some(choice), built)
+        }
+        None => (None, None),
+    };
+    let (beam, modes) = match built {
+        Some(built) => built,
+        None => {
+            let string = string_choice.as_ref().map(|c| c.fidelity);
+            let beam = crate::beam::BeamModel::new(model.beam_spec_with_string(string)?)?;
+            let modes = beam.modes()?;
+            (beam, modes)
+        }
+    };
     let choice = match options.fidelity {
         Some(fidelity) => crate::select::Choice { fidelity, reason: "set on the command line".into() },
         None => crate::select::fidelity_for(model, &beam, &modes)?,
     };
     let fidelity = choice.fidelity;
-    let string_choice = model.payload.string().map(|_| model.string_fidelity()).transpose()?;
     let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, model.arm_options())?;
     let mut scene = Scene::with_arm(model, arm)?;
     let h = model.time.step_s;
@@ -394,7 +409,9 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
     if let Some(choice) = string_choice {
-        summary.string = Some(string_summary(model, series, choice)?);
+        let (t, tip, stress) = (&series.t_s, &series.string_tip_deflection_m, &series.string_stress_pa);
+        summary.string =
+            Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, t, tip, stress)?);
     }
     Ok(summary)
 }
@@ -548,30 +565,6 @@ fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
     let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
     series.string_tip_deflection_m.push(reading.tip_deflection_m);
     series.string_stress_pa.push(reading.max_bending_stress_pa);
-}
-
-/// The summary's `string` object: the fidelity that ran, the string's first three frequencies
-/// held in its hands (from its finite elements, whatever fidelity ran) and its peaks.
-fn string_summary(
-    model: &Model,
-    series: &Series,
-    choice: crate::select::Choice,
-) -> Result<crate::sensor::string::StringSummary, SceneError> {
-    let reference = crate::beam::BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Fe))?)?;
-    let frequencies_hz = reference.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
-    let (i, stress) = series
-        .string_stress_pa
-        .iter()
-        .enumerate()
-        .fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
-    Ok(crate::sensor::string::StringSummary {
-        model: choice.fidelity.to_string(),
-        model_reason: choice.reason,
-        frequencies_hz: frequencies_hz.into_iter().take(3).collect(),
-        max_bending_stress_pa: stress,
-        max_bending_stress_time_s: series.t_s.get(i).copied().unwrap_or(0.0),
-        max_tip_deflection_m: series.string_tip_deflection_m.iter().map(|d| d.abs()).fold(0.0, f64::max),
-    })
 }
 
 /// Each sensor's reading at the scene's current state.

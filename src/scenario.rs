@@ -348,7 +348,20 @@ impl Check<'_> {
         if let Some(held) = model.payload.string() {
             self.clamp(held, &model.robot)?;
         }
-        let beam = model.beam_spec().and_then(BeamModel::new).map_err(|e| self.invalid("payload", e.to_string()))?;
+        // The arm with a string lumped (cheap: no eigenproblem); a flexible string's own beam is
+        // checked from its description (what `auto` builds is the run's).
+        let beam = model
+            .beam_spec_with_string(None)
+            .and_then(BeamModel::new)
+            .map_err(|e| self.invalid("payload", e.to_string()))?;
+        let member = match model.payload.string().filter(|held| held.model != Some(Fidelity::Rigid)) {
+            Some(held) => {
+                let spec = held.member_spec(Fidelity::Fe).map_err(|e| self.invalid("payload", e.to_string()))?;
+                spec.validate(model.robot.arm.length_m()).map_err(|e| self.invalid("payload", e.to_string()))?;
+                Some(spec)
+            }
+            None => None,
+        };
         if let Some(Fidelity::Modal { modes }) = model.fidelity
             && !(1..=beam.arm_dofs()).contains(&modes)
         {
@@ -357,8 +370,8 @@ impl Check<'_> {
                 format!("{modes} is outside 1 ..= {} (the FE DOFs of this arm)", beam.arm_dofs()),
             ));
         }
-        if let Some(member) = &beam.member {
-            let clamps = &member.spec.clamps_m;
+        if let Some(member) = &member {
+            let clamps = &member.clamps_m;
             let straddles = |x: f64| clamps.iter().any(|&c| c <= x) && clamps.iter().any(|&c| c > x);
             let gauge = model.sensors.iter().position(|s| match s.kind {
                 SensorKind::StrainGauge { station_m, .. } => straddles(station_m),
@@ -374,13 +387,12 @@ impl Check<'_> {
                 ));
             }
         }
-        if let (Some(Fidelity::Modal { modes }), Some(member)) =
-            (model.payload.string().and_then(|h| h.model), &beam.member)
-            && !(1..=member.own_dofs.len()).contains(&modes)
+        if let (Some(Fidelity::Modal { modes }), Some(member)) = (model.payload.string().and_then(|h| h.model), &member)
+            && !(1..=member.own_dofs()).contains(&modes)
         {
             return Err(self.invalid(
                 "payload.model.modes",
-                format!("{modes} is outside 1 ..= {} (the FE DOFs of this string)", member.own_dofs.len()),
+                format!("{modes} is outside 1 ..= {} (the FE DOFs of this string)", member.own_dofs()),
             ));
         }
         self.drive_limits(model)?;

@@ -162,10 +162,20 @@ pub const STRING_MODE_MARGIN: f64 = 5.0;
 /// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped
 /// at its centre) when every bending mode of the string held in its hands lies above both the
 /// band the scene excites and [`STRING_MODE_MARGIN`] times the arm's first frequency, else
-/// `modal(k)` with the k string modes below that. A friction-clamped string is rigid. Rigid
+/// `modal(k)` with the k string modes below that (the band's own edge is conservative: an
+/// impact on the arm reaches the string only through its hands). A friction-clamped string is rigid. Rigid
 /// without a string.
 pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
-    let choice = |fidelity, reason: &str| Ok(Choice { fidelity, reason: reason.into() });
+    Ok(string_fidelity_and_beam(model)?.0)
+}
+
+/// A string's beam with the arm's modes, built for a choice and reused by the run.
+pub type BuiltBeam = (BeamModel, ModalBasis);
+
+/// [`string_fidelity`], with the beam (and the arm's modes) `auto` built to choose, ready for a
+/// run where it chose a flexible string (`None` where it did not build one or chose rigid).
+pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBeam>), BeamError> {
+    let choice = |fidelity, reason: &str| Ok((Choice { fidelity, reason: reason.into() }, None));
     let Some(held) = model.payload.string() else { return choice(Fidelity::Rigid, "no string") };
     if let Some(fidelity) = held.model {
         return choice(fidelity, "set in the scenario");
@@ -173,7 +183,7 @@ pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
     if held.friction_clamp().is_some() {
         return choice(Fidelity::Rigid, "a friction-clamped string slips as a rigid body");
     }
-    let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
+    let mut beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
     let arm_modes = beam.modes()?;
     let string_hz = beam.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
     let arm_first_hz = arm_modes.frequencies_hz().first().copied().unwrap_or(0.0);
@@ -186,13 +196,15 @@ pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
          the scene's band {band_hz:.0} Hz"
     );
     if k == 0 {
-        Ok(Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid") })
-    } else {
-        Ok(Choice {
-            fidelity: Fidelity::Modal { modes: k },
-            reason: format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz"),
-        })
+        return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid") }, None));
     }
+    // The beam built for the choice is the run's, keeping k of the string's modes.
+    if let Some(member) = beam.spec.member.as_mut() {
+        member.kept_modes = Some(k);
+    }
+    let fidelity = Fidelity::Modal { modes: k };
+    let reason = format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz");
+    Ok((Choice { fidelity, reason }, Some((beam, arm_modes))))
 }
 
 /// Clamped modes of the model against which an actuated arm's coupled frequencies are judged.

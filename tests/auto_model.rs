@@ -22,11 +22,6 @@ fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
     rel(peak_force(a), peak_force(reference)).max(rel(a.max_tip_deflection_m, reference.max_tip_deflection_m))
 }
 
-/// Scenes where the arm's rule is measured to keep more modes than the 2 % needs, and how many:
-/// the default's impacts reach the third mode (69 Hz) by the band rule, yet with the string held
-/// flexibly modal(2) is 0.7 % from fe (docs/scene.md).
-const CONSERVATIVE_BY: &[(&str, usize)] = &[("default", 1)];
-
 #[test]
 fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
     for path in shipped() {
@@ -46,10 +41,7 @@ fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_is() {
         let cheaper: Vec<Fidelity> = match chosen {
             Fidelity::Rigid => vec![],
             Fidelity::Modal { modes } => {
-                let spare = CONSERVATIVE_BY.iter().find(|(n, _)| n == name).map_or(0, |(_, k)| *k);
-                std::iter::once(Fidelity::Rigid)
-                    .chain((1..modes.saturating_sub(spare)).map(|m| Fidelity::Modal { modes: m }))
-                    .collect()
+                std::iter::once(Fidelity::Rigid).chain((1..modes).map(|m| Fidelity::Modal { modes: m })).collect()
             }
             Fidelity::Fe => panic!("auto never picks fe"),
         };

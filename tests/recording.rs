@@ -140,7 +140,8 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
         }
     }
     let classes = classes.join(" ");
-    for (class, count) in [("\"3D\"", 1), ("\"TimeSeries\"", 3), ("\"TextLog\"", 1)] {
+    // Contact force, tip deflection, drive torque and the held string's tip deflection.
+    for (class, count) in [("\"3D\"", 1), ("\"TimeSeries\"", 4), ("\"TextLog\"", 1)] {
         assert_eq!(classes.matches(class).count(), count, "{class} in {classes}");
     }
     let root = root.expect("the viewport has a root container");

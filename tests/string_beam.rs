@@ -66,6 +66,43 @@ fn a_tube_clamped_at_two_hands_rings_as_two_cantilevers_and_a_clamped_span() {
 }
 
 #[test]
+fn a_tube_on_a_limp_arm_rings_free_free() {
+    // Hands on an arm with next to no stiffness or mass: the string is as good as free, and its
+    // bending modes are the free–free tube's (λ = 4.73004, 7.85320), above the near-zero
+    // frequencies of its rigid motions on the limp arm.
+    let limp =
+        Segment { length_m: 9.0, axial_rigidity_n: 1e-6, bending_rigidity_n_m2: 1e-6, mass_per_length_kg_m: 1e-3 };
+    let spec = BeamSpec::uniform(limp, 24).with_member(MemberSpec {
+        name: "string".into(),
+        start_m: 1.25,
+        segment: tubing(12.5),
+        clamps_m: vec![6.0, 9.0],
+        elements: 50,
+        kept_modes: None,
+        damping_ratio: 0.0,
+    });
+    let beam = BeamModel::new(spec).unwrap();
+    let s = tubing(12.5);
+    let all = beam.modes_spinning(0.0, false).unwrap();
+    // The string's modes: those whose kinetic energy (Φᵀ M Φ = 1) is mostly in the string's own
+    // DOFs, not in the limp arm's.
+    let own = beam.member.as_ref().unwrap().own_dofs.clone();
+    let m_own = beam.mass.view((own.start, own.start), (own.len(), own.len()));
+    let in_string = |i: usize| {
+        let phi = all.shapes.column(i).rows(own.start, own.len()).into_owned();
+        phi.dot(&(m_own * &phi))
+    };
+    let flexible: Vec<f64> = (0..all.len())
+        .filter(|&i| all.omegas_rad_s[i] > 1.0 && in_string(i) > 0.9)
+        .map(|i| all.omegas_rad_s[i])
+        .collect();
+    for (k, lambda) in [4.730_04, 7.853_20].iter().enumerate() {
+        let exact = omega(*lambda, 12.5, &s);
+        assert!(rel(flexible[k], exact) < 1e-3, "free-free mode {k}: {} vs {exact} rad/s", flexible[k]);
+    }
+}
+
+#[test]
 fn the_static_sag_of_an_overhang_is_w_l4_over_8_ei() {
     // On an arm a million times stiffer than the real one, the hands stay put: the 5.5 m
     // overhang's tip sags w a⁴ / 8EI under its own weight (w = μ g), the span between the hands

@@ -83,6 +83,11 @@ impl MemberSpec {
         Ok(())
     }
 
+    /// Number of the member's own DOFs (its nodes off the clamps), without meshing the arm.
+    pub fn own_dofs(&self) -> usize {
+        NODE_DOFS * (self.node_positions().len() - self.clamps_m.len())
+    }
+
     /// Member node positions: its ends and clamps, elements spread over the pieces between them
     /// in proportion to their length.
     fn node_positions(&self) -> Vec<f64> {

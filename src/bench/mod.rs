@@ -322,7 +322,10 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
             .chain(std::iter::once(Fidelity::Fe));
         out.extend(strings.map(|string| Variant { axis: "string".into(), string: Some(string), ..implicit.clone() }));
     }
-    if let Some(clamp) = base_clamp {
+    // The other clamp, where the string is held by one hand (a friction clamp holds it in one
+    // hand's jaws).
+    let one_hand = model.payload.string().is_some_and(|held| held.grips.len() == 1);
+    if let Some(clamp) = base_clamp.filter(|_| one_hand) {
         let other = if clamp == Clamp::Rigid { Clamp::Friction } else { Clamp::Rigid };
         let axis = format!("clamp: {}", format!("{other:?}").to_lowercase());
         out.extend(steps.iter().filter(|&&h| h >= 0.25 * h0).map(|&step_s| Variant {

@@ -263,7 +263,8 @@ pub fn map(
     Ok(StabilityMap { arm, contact, scene: rows, clamp })
 }
 
-/// The friction clamp with the 121 kg and 200 kg strings over a range of steps, at the bench's
+/// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings over a range of
+/// steps, at the bench's
 /// auto model and at eight modes, under generalized-α (so that a divergence is the clamp's
 /// coupling, not an explicit scene integrator's limit on the arm): whether each run holds, and
 /// its slip.
@@ -284,6 +285,10 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
         if let Some(held) = s.payload.string_mut() {
             held.pipe = pipe;
             held.clamp = Clamp::Friction;
+            // In the palm's jaws alone, at its middle: a friction clamp is one hand's.
+            let palm = held.palm().clone();
+            held.in_one_hand(&palm.hand, palm.station_m);
+            held.model = None;
         }
         let string_kg = s.payload.mass_kg();
         for &model in &models {

@@ -24,15 +24,36 @@ pub enum ActuatorViews {
     TrackingAndPressures,
 }
 
-/// The 3D scene left; contact force, tip deflection, drive torque, an actuator's tracking error
-/// and chamber pressures, and the event log one above the other on the right.
-pub fn run_layout(actuator: ActuatorViews) -> BlueprintLayout {
+/// The plots a run's outputs call for besides the ones every run has.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunViews {
+    /// The actuator's.
+    pub actuator: ActuatorViews,
+    /// A held string's tip deflection.
+    pub string: bool,
+}
+
+impl RunViews {
+    /// The views for a run's series.
+    pub fn of(series: &crate::run::Series) -> Self {
+        RunViews { actuator: ActuatorViews::of(&series.actuator), string: !series.string_tip_deflection_m.is_empty() }
+    }
+}
+
+/// The 3D scene left; contact force, tip deflection, drive torque, a held string's tip
+/// deflection, an actuator's tracking error and chamber pressures, and the event log one above
+/// the other on the right.
+pub fn run_layout(views: RunViews) -> BlueprintLayout {
+    let actuator = views.actuator;
     let view = |class, name, origin| BlueprintLayout::View { class, name, origin };
     let mut plots = vec![
         view("TimeSeries", "contact force (N)", "plots/contact_force"),
         view("TimeSeries", "tip deflection (m)", "plots/tip_deflection"),
         view("TimeSeries", "drive torque (N·m)", "plots/drive_torque"),
     ];
+    if views.string {
+        plots.push(view("TimeSeries", "string tip deflection (m)", "plots/string/tip_deflection"));
+    }
     if actuator != ActuatorViews::None {
         plots.push(view("TimeSeries", "tracking error (°)", "plots/actuator/tracking_error_deg"));
     }

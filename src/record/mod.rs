@@ -126,7 +126,7 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     let tmp = path.with_extension("rrd.tmp");
     let file = std::fs::File::create(&tmp).map_err(io)?;
     let written = content::chunks(run).map_err(|e| e.to_string()).and_then(|chunks| {
-        let layout = layout::run_layout(layout::ActuatorViews::of(&run.series.actuator));
+        let layout = layout::run_layout(layout::RunViews::of(run.series));
         write_rrd(file, run.ending.scenario(), &chunks, &layout)
     });
     if let Err(message) = written {
@@ -157,7 +157,7 @@ pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordErr
     let chunks = content::chunks(run).map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
     out.send_chunks(chunks);
-    stream::finish(out, &target, layout::ActuatorViews::of(&run.series.actuator))
+    stream::finish(out, &target, layout::RunViews::of(run.series))
 }
 
 /// Moves the complete file `tmp` to `path`. The old file is removed first: renamed over, ext4

@@ -8,7 +8,7 @@ use rerun::log::ChunkBatcherConfig;
 use rerun::{RecordingStream, RecordingStreamBuilder};
 
 use super::RecordError;
-use super::layout::{ActuatorViews, BlueprintLayout, run_layout};
+use super::layout::{BlueprintLayout, RunViews, run_layout};
 
 /// Application id of every recording.
 const APPLICATION_ID: &str = "pipearm";
@@ -77,12 +77,12 @@ const CONNECT_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(1);
 /// Ends a stream: its data through the sink, then the blueprint and the command that activates
 /// it (last, as in a file), and closes it. A viewer that stops answering fails the flush after
 /// rerun's connection timeout (5 s).
-pub(super) fn finish(stream: RecordingStream, target: &str, actuator: ActuatorViews) -> Result<(), RecordError> {
+pub(super) fn finish(stream: RecordingStream, target: &str, views: RunViews) -> Result<(), RecordError> {
     let flush = |stream: &RecordingStream| {
         stream.flush_blocking().map_err(|source| RecordError::Flush { target: target.to_string(), source })
     };
     flush(&stream)?;
-    blueprint(actuator)
+    blueprint(views)
         .send(&stream, BlueprintActivation { make_active: true, make_default: true })
         .map_err(|source| RecordError::Stream { target: target.to_string(), source })?;
     flush(&stream)?;
@@ -91,8 +91,8 @@ pub(super) fn finish(stream: RecordingStream, target: &str, actuator: ActuatorVi
 }
 
 /// The run's layout as rerun's blueprint.
-fn blueprint(actuator: ActuatorViews) -> Blueprint {
-    match to_rerun(run_layout(actuator)) {
+fn blueprint(views: RunViews) -> Blueprint {
+    match to_rerun(run_layout(views)) {
         ContainerLike::View(view) => Blueprint::new(view),
         root => Blueprint::new(root),
     }

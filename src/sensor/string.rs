@@ -184,3 +184,36 @@ pub struct StringSummary {
     /// Largest |deflection| of its far end normal to the arm, hub frame, m.
     pub max_tip_deflection_m: f64,
 }
+
+impl StringSummary {
+    /// The summary of a run's string at `fidelity` chosen as `choice` says, from its readings at
+    /// times `t_s`. The frequencies are those of the run's beam where it holds the string as a
+    /// beam of its own (every fixed-interface mode is solved whatever the kept count), else of
+    /// `model`'s fe string.
+    pub fn of(
+        model: &crate::model::Model,
+        beam: &crate::beam::BeamModel,
+        choice: crate::select::Choice,
+        t_s: &[f64],
+        tip_deflection_m: &[f64],
+        stress_pa: &[f64],
+    ) -> Result<Self, crate::beam::BeamError> {
+        let frequencies_hz = match beam.member_modes() {
+            Some(modes) => modes.frequencies_hz(),
+            None => {
+                let spec = model.beam_spec_with_string(Some(crate::arm::Fidelity::Fe))?;
+                crate::beam::BeamModel::new(spec)?.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default()
+            }
+        };
+        let (i, stress) =
+            stress_pa.iter().enumerate().fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
+        Ok(StringSummary {
+            model: choice.fidelity.to_string(),
+            model_reason: choice.reason,
+            frequencies_hz: frequencies_hz.into_iter().take(3).collect(),
+            max_bending_stress_pa: stress,
+            max_bending_stress_time_s: t_s.get(i).copied().unwrap_or(0.0),
+            max_tip_deflection_m: tip_deflection_m.iter().map(|d| d.abs()).fold(0.0, f64::max),
+        })
+    }
+}
