@@ -206,7 +206,7 @@ impl ArmModel {
             modal_omegas_rad_s.extend(&member_omegas);
         }
         let member_highest = member_omegas.last().copied().unwrap_or(0.0);
-        let damping_full = modal_damping_matrix(&beam, &modes, &options.damping_ratios);
+        let damping = modal_damping(&beam, &modes, &options.damping_ratios, &basis);
         let project = |m: &DMatrix<f64>| basis.transpose() * m * &basis;
         let project_v = |v: &DVector<f64>| basis.transpose() * v;
         let stiffening = if options.geometric_stiffening { 1.0 } else { 0.0 };
@@ -232,7 +232,7 @@ impl ArmModel {
             mass,
             mass_inverse,
             stiffness,
-            damping: project(&damping_full),
+            damping,
             gyroscopic: project(&beam.gyroscopic),
             spin_mass: project(&(&beam.translational_mass - stiffening * &beam.centrifugal_stiffness)),
             gravity_stiffness: project(&(stiffening * g * &beam.gravity_stiffness)),
@@ -346,38 +346,35 @@ fn validate_options(o: &ArmOptions) -> Result<(), ArmError> {
     Ok(())
 }
 
-/// Modal damping over every clamped mode: D = M Φ diag(2 ζ_i ω_i) Φᵀ M, so that each fidelity
-/// damps each kept mode at its own ζ_i and modal(n) converges to fe.
+/// Modal damping over every clamped mode, projected on `basis` (B): D = M Φ diag(2 ζ_i ω_i) Φᵀ M,
+/// so that each fidelity damps each kept mode at its own ζ_i and modal(n) converges to fe. As
+/// Bᵀ D B = (Φᵀ M B)ᵀ diag (Φᵀ M B) it is formed on B's few columns, never over every DOF.
 ///
 /// With a member (a flexible string) each part damps its own modal coordinates only: the arm's,
-/// q_a = Φ_aᵀ M_g d_a (M_g the arm's mass with the member riding on it), and the member's
-/// deformation relative to that ride, η = Φ_sᵀ M_ss (d_s − Ψ d_a) — never the member's rigid
-/// ride on the hands, which a damping of all its DOFs would brake.
-fn modal_damping_matrix(beam: &BeamModel, modes: &ModalBasis, ratios: &[f64]) -> DMatrix<f64> {
+/// q_a = Φ_aᵀ M_g d_a (M_g = Tᵀ M T the arm's mass with the member riding on it), and the
+/// member's deformation relative to that ride, η = Φ_sᵀ M_ss (d_s − Ψ d_a) — never the member's
+/// rigid ride on the hands, which a damping of all its DOFs would brake.
+fn modal_damping(beam: &BeamModel, modes: &ModalBasis, ratios: &[f64], basis: &DMatrix<f64>) -> DMatrix<f64> {
     let zeta = |i: usize| ratios[i.min(ratios.len() - 1)];
-    let diag = DVector::from_iterator(modes.len(), (0..modes.len()).map(|i| 2.0 * zeta(i) * modes.omegas_rad_s[i]));
+    let arm_rates =
+        DVector::from_iterator(modes.len(), (0..modes.len()).map(|i| 2.0 * zeta(i) * modes.omegas_rad_s[i]));
+    let weighted = |rows: &DMatrix<f64>, rates: &DVector<f64>| rows.transpose() * DMatrix::from_diagonal(rates) * rows;
     let (Some(member), Some(member_modes)) = (&beam.member, beam.member_modes()) else {
-        let m_phi = &beam.mass * &modes.shapes;
-        return &m_phi * DMatrix::from_diagonal(&diag) * m_phi.transpose();
+        // Φᵀ M B.
+        let rows = modes.shapes.transpose() * (&beam.mass * basis);
+        return weighted(&rows, &arm_rates);
     };
-    let (n, a) = (beam.dofs(), beam.arm_dofs());
-    let ride = beam.arm_ride();
-    let arm_mass = ride.transpose() * &beam.mass * &ride;
-    // q_a = Φ_aᵀ M_g d_a: rows over every DOF, zero on the member's own.
-    let mut arm_rows = DMatrix::zeros(modes.len(), n);
-    arm_rows.columns_mut(0, a).copy_from(&(modes.shapes.rows(0, a).transpose() * &arm_mass));
-    let mut damping = arm_rows.transpose() * DMatrix::from_diagonal(&diag) * &arm_rows;
-    // η = Φ_sᵀ M_ss (d_s − Ψ d_a).
+    let a = beam.arm_dofs();
     let own = member.own_dofs.clone();
+    let ride = beam.arm_ride();
+    // q_a over B: Φ_aᵀ M_g (E B) = (T Φ_a)ᵀ M T (E B), T Φ_a being the modes' columns.
+    let arm_part = basis.rows(0, a);
+    let arm_rows = modes.shapes.transpose() * (&beam.mass * (&ride * arm_part));
+    // η over B: Φ_sᵀ M_ss (B_s − Ψ B_a).
     let m_ss = beam.mass.view((own.start, own.start), (own.len(), own.len()));
-    let phi_m = member_modes.shapes.transpose() * m_ss;
-    let mut member_rows = DMatrix::zeros(member_modes.len(), n);
-    member_rows.columns_mut(own.start, own.len()).copy_from(&phi_m);
-    let psi = ride.rows(a, own.len());
-    member_rows.columns_mut(0, a).copy_from(&(-(&phi_m * psi)));
+    let relative = basis.rows(own.start, own.len()) - ride.rows(a, own.len()) * arm_part;
+    let member_rows = member_modes.shapes.transpose() * (m_ss * relative);
     let zeta_s = member.spec.damping_ratio;
-    let member_diag =
-        DVector::from_iterator(member_modes.len(), member_modes.omegas_rad_s.iter().map(|w| 2.0 * zeta_s * w));
-    damping += member_rows.transpose() * DMatrix::from_diagonal(&member_diag) * &member_rows;
-    damping
+    let member_rates = member_modes.omegas_rad_s.iter().map(|w| 2.0 * zeta_s * w);
+    weighted(&arm_rows, &arm_rates) + weighted(&member_rows, &DVector::from_iterator(member_modes.len(), member_rates))
 }
