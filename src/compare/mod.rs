@@ -11,7 +11,7 @@
 //! the drive stops ([`crate::analysis::residual`]: up-crossings of the final mean, and successive
 //! peaks above it). Crossings rather than an FFT: after the drive there are a few seconds of
 //! one decaying mode, and an FFT over T seconds resolves 1/T (0.2 Hz over 5 s, 5 % of the
-//! default arm's 4.2 Hz), where crossings, interpolated between samples, time each period to a
+//! default arm's 4.7 Hz), where crossings, interpolated between samples, time each period to a
 //! fraction of a sample. They need the signal to cross its mean cleanly: measured noise of more
 //! than a few percent of the vibration's amplitude should be filtered first.
 
