@@ -326,9 +326,9 @@ pub fn run_partial(model: &Model, options: &RunOptions) -> (Result<RunSummary, S
 
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
 fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
-    // The beam and its modes, built once for the model choice and the arm.
-    // The string's fidelity, chosen once for the beam and the summary; the beam `auto` built to
-    // choose it is the run's.
+    // The beam and its modes, built once for the model choice and the arm. The string's fidelity
+    // is chosen once for the beam and the summary, and the beam `auto` built to choose it is the
+    // run's.
     let (string_choice, built) = match model.payload.string() {
         Some(_) => {
             let (choice, built) = crate::select::string_fidelity_and_beam(model)?;

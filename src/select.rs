@@ -155,16 +155,17 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
 
 /// A held string's bending modes count when they lie below this multiple of the arm's first
 /// frequency, whatever the scene's band: a string mode that close to the arm's takes part in its
-/// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it (`pipearm bench --string-models` measures where a rigid string
-/// stays within 1 % of the converged peak force, docs/scene.md).
+/// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it
+/// (`pipearm bench`'s `string` axis shows where a rigid string stays within 1 % of the converged
+/// peak force; docs/scene.md).
 pub const STRING_MODE_MARGIN: f64 = 5.0;
 
 /// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped
 /// at its centre) when every bending mode of the string held in its hands lies above both the
 /// band the scene excites and [`STRING_MODE_MARGIN`] times the arm's first frequency, else
 /// `modal(k)` with the k string modes below that (the band's own edge is conservative: an
-/// impact on the arm reaches the string only through its hands). A friction-clamped string is rigid. Rigid
-/// without a string.
+/// impact on the arm reaches the string only through its hands). A friction-clamped string is
+/// rigid. Rigid without a string.
 pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
     Ok(string_fidelity_and_beam(model)?.0)
 }
@@ -199,9 +200,7 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
         return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid") }, None));
     }
     // The beam built for the choice is the run's, keeping k of the string's modes.
-    if let Some(member) = beam.spec.member.as_mut() {
-        member.kept_modes = Some(k);
-    }
+    beam.keep_member_modes(Some(k));
     let fidelity = Fidelity::Modal { modes: k };
     let reason = format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz");
     Ok((Choice { fidelity, reason }, Some((beam, arm_modes))))

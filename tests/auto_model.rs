@@ -1,11 +1,13 @@
 //! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
 //! contact force and peak tip deflection, and no cheaper fidelity is.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use pipearm::arm::Fidelity;
 use pipearm::run::{RunSummary, run};
-use pipearm::scenario::{DriveSpec, Scenario};
+use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
 fn shipped() -> Vec<PathBuf> {
@@ -67,17 +69,7 @@ fn motion_advice_flags_drives_beyond_the_seed_limits() {
     let (within, _) = run(&s, None).unwrap();
     assert!(within.motion_advice.within, "{:?}", within.motion_advice);
     // 0 → 90° in 5 s with a 20 % ramp: 22.5 °/s², beyond the seed's 5 °/s² for this class.
-    s.drive.motion = DriveSpec::Trapezoidal {
-        start_deg: 0.0,
-        end_deg: 90.0,
-        duration_s: 5.0,
-        accel_deg_s2: None,
-        ramp_fraction: Some(0.2),
-        shaper: None,
-        shaper_hz: None,
-    }
-    .motion()
-    .unwrap();
+    s.drive.motion = common::lift_to_vertical(5.0).motion().unwrap();
     let (fast, _) = run(&s, None).unwrap();
     assert!(
         !fast.motion_advice.within && (fast.motion_advice.peak_accel_deg_s2 - 22.5).abs() < 1e-9,

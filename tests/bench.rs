@@ -10,19 +10,11 @@ use pipearm::bench::stability::Limit;
 use pipearm::bench::{BenchOptions, Outcome, bench, points_csv, report_markdown};
 use pipearm::integrate::IntegratorKind;
 use pipearm::model::Model;
-use pipearm::scenario::{DriveSpec, Scenario};
+use pipearm::scenario::Scenario;
 
 fn short_lab() -> Model {
     let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/lab.toml")).unwrap();
-    s.spec.drive = DriveSpec::Trapezoidal {
-        start_deg: 0.0,
-        end_deg: 90.0,
-        duration_s: 2.0,
-        accel_deg_s2: None,
-        ramp_fraction: Some(0.2),
-        shaper: None,
-        shaper_hz: None,
-    };
+    s.spec.drive = common::lift_to_vertical(2.0);
     s.spec.time.settle_s = 0.5;
     Scenario::from_spec(&s.path, s.spec).unwrap().model
 }

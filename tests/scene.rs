@@ -95,17 +95,7 @@ fn compliant_and_rapier_methods_agree_on_peak_force() {
     // strike, 0.23 kN, the pad body of the `rapier` method stops 60 % short: its contact
     // tolerance is of the order of the pad's 31 µm compression; docs/accuracy.md.)
     s.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
-    s.drive.motion = DriveSpec::Trapezoidal {
-        start_deg: 0.0,
-        end_deg: 90.0,
-        duration_s: 10.0,
-        accel_deg_s2: None,
-        ramp_fraction: Some(0.2),
-        shaper: None,
-        shaper_hz: None,
-    }
-    .motion()
-    .unwrap();
+    s.drive.motion = common::lift_to_vertical(10.0).motion().unwrap();
     s.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
     s.time.settle_s = 3.0;
     let (compliant, _) = run(&s, None).unwrap();

@@ -91,18 +91,9 @@ impl MemberSpec {
     /// Member node positions: its ends and clamps, elements spread over the pieces between them
     /// in proportion to their length.
     fn node_positions(&self) -> Vec<f64> {
-        let (start, end) = (self.start_m, self.end_m());
-        let length = self.segment.length_m;
-        let mut breaks = vec![start, end];
+        let mut breaks = vec![self.start_m, self.end_m()];
         breaks.extend(&self.clamps_m);
-        breaks.sort_by(f64::total_cmp);
-        breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
-        let mut nodes = vec![start];
-        for gap in breaks.windows(2) {
-            let count = ((self.elements as f64 * (gap[1] - gap[0]) / length).round() as usize).max(1);
-            nodes.extend((1..=count).map(|k| gap[0] + (gap[1] - gap[0]) * k as f64 / count as f64));
-        }
-        nodes
+        super::spread_nodes(breaks, self.elements, self.segment.length_m)
     }
 
     /// The part of the member whose axial load reaches the arm through clamp `c`: from the
@@ -219,17 +210,7 @@ impl MemberModel {
 
     /// Shape rows (u, v, φ, curvature) at local coordinate `xi` of element `e`.
     pub fn element_rows(&self, e: usize, xi: f64, dofs: usize) -> [DVector<f64>; 4] {
-        let r = shape_rows(xi, self.elements[e].length_m);
-        let mut rows = [0; 4].map(|_| DVector::zeros(dofs));
-        for (i, g) in self.element_dofs[e].iter().enumerate() {
-            if let Some(g) = *g {
-                rows[0][g] = r.u[i];
-                rows[1][g] = r.v[i];
-                rows[2][g] = r.dv[i];
-                rows[3][g] = r.ddv[i];
-            }
-        }
-        rows
+        super::rows_over(&self.element_dofs[e], &shape_rows(xi, self.elements[e].length_m), dofs)
     }
 
     /// Curvature rows on both sides of each clamp (the string's root sections, where its

@@ -168,16 +168,38 @@ impl BeamSpec {
         }
         breaks.extend(self.masses.iter().map(|m| m.position_m));
         breaks.extend(self.member.iter().flat_map(|m| m.clamps_m.iter().copied()));
-        breaks.sort_by(f64::total_cmp);
-        breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
-        let mut nodes = vec![0.0];
-        for gap in breaks.windows(2) {
-            let count = ((self.elements as f64 * (gap[1] - gap[0]) / length).round() as usize).max(1);
-            nodes.extend((1..=count).map(|k| gap[0] + (gap[1] - gap[0]) * k as f64 / count as f64));
-        }
-        *nodes.last_mut().expect("at least one gap") = length;
-        nodes
+        spread_nodes(breaks, self.elements, length)
     }
+}
+
+/// Nodes of a beam over `breaks` (its ends and every point that must be a node, in any order):
+/// about `elements` elements spread over the gaps in proportion to their length, at least one a
+/// gap; the last node is the last break exactly.
+fn spread_nodes(mut breaks: Vec<f64>, elements: usize, length_m: f64) -> Vec<f64> {
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length_m);
+    let mut nodes = vec![breaks[0]];
+    for gap in breaks.windows(2) {
+        let count = ((elements as f64 * (gap[1] - gap[0]) / length_m).round() as usize).max(1);
+        nodes.extend((1..=count).map(|k| gap[0] + (gap[1] - gap[0]) * k as f64 / count as f64));
+    }
+    *nodes.last_mut().expect("at least one gap") = breaks[breaks.len() - 1];
+    nodes
+}
+
+/// Shape rows `r` of one element mapped onto `dofs` global DOFs through its element-to-global
+/// map: (u, v, φ, curvature) rows.
+fn rows_over(map: &[Option<usize>; ELEMENT_DOFS], r: &ShapeRows, dofs: usize) -> [DVector<f64>; 4] {
+    let mut rows = [0; 4].map(|_| DVector::zeros(dofs));
+    for (i, g) in map.iter().enumerate() {
+        if let Some(g) = *g {
+            rows[0][g] = r.u[i];
+            rows[1][g] = r.v[i];
+            rows[2][g] = r.dv[i];
+            rows[3][g] = r.ddv[i];
+        }
+    }
+    rows
 }
 
 /// One finite element: position and uniform properties.
@@ -315,6 +337,14 @@ impl BeamModel {
         t
     }
 
+    /// Keeps `kept` of the member's fixed-interface modes in the models reduced from this one
+    /// (the spec's and the meshed member's descriptions both say so).
+    pub fn keep_member_modes(&mut self, kept: Option<usize>) {
+        for spec in [self.spec.member.as_mut(), self.member.as_mut().map(|m| &mut m.spec)].into_iter().flatten() {
+            spec.kept_modes = kept;
+        }
+    }
+
     /// The member's fixed-interface modes (clamped at its hands, over its own DOFs), if any.
     pub fn member_modes(&self) -> Option<&ModalBasis> {
         self.member_modes.as_ref()
@@ -435,15 +465,8 @@ impl BeamModel {
         let e = self.elements.iter().position(|el| x <= el.x0_m + el.length_m).unwrap_or(self.elements.len() - 1);
         let el = &self.elements[e];
         let r = shape_rows((x - el.x0_m) / el.length_m, el.length_m);
-        let mut rows = [DVector::zeros(self.dofs()), DVector::zeros(self.dofs()), DVector::zeros(self.dofs())];
-        for (i, g) in element_dofs(e).iter().enumerate() {
-            if let Some(g) = *g {
-                rows[0][g] = r.u[i];
-                rows[1][g] = r.v[i];
-                rows[2][g] = r.dv[i];
-            }
-        }
-        rows
+        let [u, v, slope, _] = rows_over(&element_dofs(e), &r, self.dofs());
+        [u, v, slope]
     }
 
     /// Static displacement under a load vector `f` (N and N·m on the DOFs), clamped hub.

@@ -264,10 +264,9 @@ pub fn map(
 }
 
 /// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings over a range of
-/// steps, at the bench's
-/// auto model and at eight modes, under generalized-α (so that a divergence is the clamp's
-/// coupling, not an explicit scene integrator's limit on the arm): whether each run holds, and
-/// its slip.
+/// steps, at the bench's auto model and at eight modes, under generalized-α (so that a divergence
+/// is the clamp's coupling, not an explicit scene integrator's limit on the arm): whether each
+/// run holds, and its slip.
 fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
     if model.payload.string().is_none() {
         return Ok(Vec::new());

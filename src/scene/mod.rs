@@ -69,9 +69,10 @@ pub enum SceneError {
     /// A pad the contact method cannot model.
     #[error(transparent)]
     UnsupportedPad(#[from] UnsupportedPad),
-    /// A friction clamp on a body without a collision shape to carry its jaws.
+    /// A friction clamp on a string held by several hands (it holds in one hand's jaws).
     #[error("key `payload.grips`: a friction clamp holds the string in one hand's jaws; it has {0} grips")]
     FrictionClampGrips(usize),
+    /// A friction clamp on a body without a collision shape to carry its jaws.
     #[error("key `payload.at`: `{0}` has no collision shape to carry the jaws")]
     ClampWithoutPalm(String),
     /// The run's energy grew without a source, or its values stopped being finite.

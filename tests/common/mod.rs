@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use pipearm::beam::{BeamModel, BeamSpec, Segment};
+use pipearm::scenario::DriveSpec;
 
 /// A uniform arm with EI, ρA, length; EA stiff enough that the first axial mode sits far above
 /// the bending modes tested.
@@ -44,4 +45,17 @@ pub fn hub_inertia_lambda(gamma: f64) -> f64 {
         if f(lo) * f(mid) <= 0.0 { hi = mid } else { lo = mid }
     }
     0.5 * (lo + hi)
+}
+
+/// The shipped lifts' drive, 0 → 90° trapezoidal with a 20 % ramp, over `duration_s`.
+pub fn lift_to_vertical(duration_s: f64) -> DriveSpec {
+    DriveSpec::Trapezoidal {
+        start_deg: 0.0,
+        end_deg: 90.0,
+        duration_s,
+        accel_deg_s2: None,
+        ramp_fraction: Some(0.2),
+        shaper: None,
+        shaper_hz: None,
+    }
 }
