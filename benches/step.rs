@@ -85,22 +85,12 @@ fn scene_step(c: &mut Criterion) {
 /// reading the scenario to the recording and summary written (20 s simulated, so 1000× real time
 /// is 20 ms a run).
 fn default_run(c: &mut Criterion) {
-    use pipearm::record::{write_recording, write_summary};
     use pipearm::run::{RunOptions, run_with};
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
     let out = std::env::temp_dir().join(format!("pipearm-bench-{}", std::process::id()));
-    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let mut group = c.benchmark_group("default_run");
     group.sample_size(40);
-    group.bench_function("with recording", |b| {
-        b.iter(|| {
-            let scenario = Scenario::load(&path).unwrap();
-            let (summary, series) = run_with(&scenario.model, &options).unwrap();
-            let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
-            write_recording(&out.join("default.rrd"), &summary, &series, &pads).unwrap();
-            write_summary(&out.join("default.summary.json"), &summary).unwrap();
-        })
-    });
+    group.bench_function("with recording", |b| b.iter(|| run_and_record(&Scenario::load(&path).unwrap(), &out)));
     group.bench_function("without recording", |b| {
         b.iter(|| run_with(&Scenario::load(&path).unwrap().model, &RunOptions::default()).unwrap())
     });
@@ -111,11 +101,8 @@ fn default_run(c: &mut Criterion) {
 /// The actuated scenes against their ideal twins (the same file without its `[actuator]` table),
 /// each in-process from reading the scenario to the recording and summary written.
 fn actuated_run(c: &mut Criterion) {
-    use pipearm::record::{write_recording, write_summary};
-    use pipearm::run::{RunOptions, run_with};
     use pipearm::scenario::ScenarioSpec;
     let out = std::env::temp_dir().join(format!("pipearm-bench-actuated-{}", std::process::id()));
-    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let mut group = c.benchmark_group("actuated_run");
     group.sample_size(20);
     for name in ["hydraulic", "servo"] {
@@ -131,15 +118,7 @@ fn actuated_run(c: &mut Criterion) {
         };
         for ideal in [false, true] {
             let label = if ideal { format!("{name}, ideal drive") } else { name.to_string() };
-            group.bench_function(label, |b| {
-                b.iter(|| {
-                    let scenario = load(ideal);
-                    let (summary, series) = run_with(&scenario.model, &options).unwrap();
-                    let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
-                    write_recording(&out.join(format!("{name}.rrd")), &summary, &series, &pads).unwrap();
-                    write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
-                })
-            });
+            group.bench_function(label, |b| b.iter(|| run_and_record(&load(ideal), &out)));
         }
     }
     group.finish();
@@ -150,12 +129,9 @@ fn actuated_run(c: &mut Criterion) {
 /// with the string lumped (`rigid`), each in-process from reading the scenario to the recording
 /// and summary written: the string's price (`-- string_run`; goal ≤ 1.5×).
 fn string_run(c: &mut Criterion) {
-    use pipearm::record::{write_recording, write_summary};
-    use pipearm::run::{RunOptions, run_with};
     use pipearm::scenario::{ModelSpec, PayloadSpec};
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
     let out = std::env::temp_dir().join(format!("pipearm-bench-string-{}", std::process::id()));
-    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let mut group = c.benchmark_group("string_run");
     group.sample_size(40);
     for (label, string) in [("auto", ModelSpec::Auto), ("rigid", ModelSpec::Rigid)] {
@@ -166,18 +142,23 @@ fn string_run(c: &mut Criterion) {
             }
             Scenario::from_spec(&path, spec).unwrap()
         };
-        group.bench_function(label, |b| {
-            b.iter(|| {
-                let scenario = load();
-                let (summary, series) = run_with(&scenario.model, &options).unwrap();
-                let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
-                write_recording(&out.join("default.rrd"), &summary, &series, &pads).unwrap();
-                write_summary(&out.join("default.summary.json"), &summary).unwrap();
-            })
-        });
+        group.bench_function(label, |b| b.iter(|| run_and_record(&load(), &out)));
     }
     group.finish();
     std::fs::remove_dir_all(&out).ok();
+}
+
+/// What `pipearm run` does after reading the scenario: the run with its 3D frames, then its
+/// recording and summary written to `out/<name>.{rrd, summary.json}`.
+fn run_and_record(scenario: &Scenario, out: &Path) {
+    use pipearm::record::{write_recording, write_summary};
+    use pipearm::run::{RunOptions, run_with};
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+    let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let name = &scenario.model.name;
+    write_recording(&out.join(format!("{name}.rrd")), &summary, &series, &pads).unwrap();
+    write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
 }
 
 criterion_group!(benches, arm_step, scene_step, default_run, actuated_run, string_run);
