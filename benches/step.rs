@@ -155,7 +155,7 @@ fn run_and_record(scenario: &Scenario, out: &Path) {
     use pipearm::run::{RunOptions, run_with};
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).unwrap();
-    let pads: Vec<String> = scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let pads = scenario.model.pair_series_names();
     let name = &scenario.model.name;
     write_recording(&out.join(format!("{name}.rrd")), &summary, &series, &pads).unwrap();
     write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();

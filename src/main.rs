@@ -276,7 +276,7 @@ fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()>
     let model = &scenario.model;
     let (result, series) = run_partial(model, &options);
     let name = &model.name;
-    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let pads = model.pair_series_names();
     let summary = match result {
         Ok(summary) => summary,
         Err(error @ SceneError::Diverged { t_s, .. }) if options.capture_frames => {
@@ -351,7 +351,7 @@ fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded) {
 /// `run --csv`: the run's series as CSV and Parquet tables in `out`.
 fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &pipearm::model::Model) -> Result<()> {
     let started = std::time::Instant::now();
-    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let pads = model.pair_series_names();
     let written = pipearm::export::write_tables(out, name, series, &pads)?;
     let [steps, decimated] = written.rows;
     let [csv, parquet] = written.bytes.map(|b| b as f64 / 1e6);
@@ -425,7 +425,7 @@ fn seed(only: Option<&str>, out: &Path) -> Result<()> {
         let variants = pipearm::seed::run_family(&files, true)?;
         let dir = out.join("seed").join(&section);
         for v in &variants {
-            let pads: Vec<String> = v.scenario.model.dampeners.iter().map(|d| d.name.clone()).collect();
+            let pads = v.scenario.model.pair_series_names();
             write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series, &pads)?;
         }
         let chart = out.join("seed").join(format!("{section}.svg"));
@@ -503,7 +503,8 @@ fn print_summary(path: &Path, s: &RunSummary) {
         s.robot,
         s.payload_kg
     );
-    println!("model               {}, {}, contact {}", s.model, s.integrator, s.contact_method);
+    let detection = s.contact_detection.as_ref().map(|d| format!(" ({d})")).unwrap_or_default();
+    println!("model               {}, {}, contact {}{detection}", s.model, s.integrator, s.contact_method);
     println!("static w/l          1/{:.0}: {}", 1.0 / s.static_w_over_l, s.stiffness_class);
     println!("model choice        {}", s.model_reason);
     let a = &s.motion_advice;
@@ -545,6 +546,10 @@ fn print_summary(path: &Path, s: &RunSummary) {
         );
     }
     for p in &s.pairs {
+        if p.impact_count == 0 {
+            println!("contact {:<14} no contact", p.pair);
+            continue;
+        }
         println!(
             "contact {:<14} peak {:.1} N at {:.3} s ({:.3} per payload weight), impulse {:.3} N·s, {} impacts",
             p.pair, p.peak_force_n, p.peak_time_s, p.peak_force_per_payload_weight, p.impulse_n_s, p.impact_count

@@ -35,6 +35,8 @@ pub struct Model {
     pub drive: Drive,
     /// Rubber dampeners at the stops.
     pub dampeners: Vec<Dampener>,
+    /// Fixed rig structure the arm and the string can strike.
+    pub structures: Vec<Structure>,
     /// How contact forces are computed.
     pub contact: ContactOptions,
     /// The arm's fidelity; `None`: the cheapest the scene needs ([`crate::select`]).
@@ -72,6 +74,19 @@ impl Model {
             gravity_m_s2: self.physics.gravity_m_s2,
             hub_inertia_kg_m2: self.robot.arm.hub_inertia_kg_m2,
         }
+    }
+
+    /// The names of the scene's contact pairs' series, in the scene's order: each pad's (the arm
+    /// strikes it), then each structure's for the arm and, with a held string, `string-<name>`.
+    pub fn pair_series_names(&self) -> Vec<String> {
+        let mut names: Vec<String> = self.dampeners.iter().map(|d| d.name.clone()).collect();
+        for s in &self.structures {
+            names.push(s.name.clone());
+            if self.payload.string().is_some() {
+                names.push(format!("string-{}", s.name));
+            }
+        }
+        names
     }
 
     /// The arm model at `fidelity`.
@@ -329,6 +344,43 @@ pub struct Dampener {
     pub law: ForceLaw,
 }
 
+/// A fixed piece of rig structure placed in the world (the well-centre guide, the V-door ramp,
+/// the catwalk): its shape, the force law of its face and its friction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Structure {
+    /// Its name (contact pairs are reported as `arm–<name>` and `string–<name>`).
+    pub name: String,
+    /// Its shape, centred on `position_m`.
+    pub shape: StructureShape,
+    /// World position of its centre, m (the lift plane is z = the pivot's z).
+    pub position_m: [f64; 3],
+    /// Rotation about the world z axis, rad.
+    pub angle_rad: f64,
+    /// Force law of its face.
+    pub law: ForceLaw,
+    /// Coulomb friction coefficient of its face against steel.
+    pub friction: f64,
+}
+
+/// A structure's shape.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum StructureShape {
+    /// A box of these half extents along its own x, y, z, m.
+    Box { half_extents_m: [f64; 3] },
+    /// A cylinder along world z (normal to the lift plane): radius and half length, m.
+    Cylinder { radius_m: f64, half_length_m: f64 },
+}
+
+impl StructureShape {
+    /// Radius of the sphere about its centre that holds it, m.
+    pub fn bounding_radius_m(&self) -> f64 {
+        match *self {
+            StructureShape::Box { half_extents_m: [x, y, z] } => (x * x + y * y + z * z).sqrt(),
+            StructureShape::Cylinder { radius_m, half_length_m } => radius_m.hypot(half_length_m),
+        }
+    }
+}
+
 /// How contact forces are computed.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -336,6 +388,11 @@ pub struct ContactOptions {
     /// `compliant` (the pad's force law, implicit in the arm step) or `rapier`.
     #[serde(default)]
     pub method: ContactMethod,
+    /// Where the `compliant` method finds its contact points: `pipeline` (rapier's collision
+    /// pipeline, every manifold point), `pad-face` (each pad's face against the arm's, no query)
+    /// or `auto` (`pad-face` only where it matches the pipeline, docs/scene.md).
+    #[serde(default, skip_serializing_if = "Detection::is_auto")]
+    pub detection: Detection,
     /// Mass of the pad body for the `rapier` method, kg.
     #[serde(default = "default_pad_mass")]
     pub pad_mass_kg: f64,
@@ -347,7 +404,11 @@ fn default_pad_mass() -> f64 {
 
 impl Default for ContactOptions {
     fn default() -> Self {
-        ContactOptions { method: ContactMethod::default(), pad_mass_kg: default_pad_mass() }
+        ContactOptions {
+            method: ContactMethod::default(),
+            detection: Detection::default(),
+            pad_mass_kg: default_pad_mass(),
+        }
     }
 }
 
@@ -370,6 +431,37 @@ impl ContactMethod {
         match self {
             ContactMethod::Compliant => "compliant",
             ContactMethod::Rapier => "rapier",
+        }
+    }
+}
+
+/// Where the `compliant` method finds its contact points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Detection {
+    /// `pad-face` where it matches the pipeline (pads only, struck by the arm's own face), else
+    /// `pipeline`.
+    #[default]
+    Auto,
+    /// rapier's collision pipeline: broad phase, narrow phase, every manifold point.
+    Pipeline,
+    /// Each pad's face against the arm's face at its two ends, found without a collision query.
+    PadFace,
+}
+
+impl Detection {
+    /// Whether it is `auto` (left out of a scenario's canonical form, so that a sweep's case
+    /// hashes do not change for scenarios without it).
+    pub fn is_auto(&self) -> bool {
+        *self == Detection::Auto
+    }
+
+    /// The name as a scenario writes it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Detection::Auto => "auto",
+            Detection::Pipeline => "pipeline",
+            Detection::PadFace => "pad-face",
         }
     }
 }

@@ -167,6 +167,10 @@ pub struct RunSummary {
     pub integrator: String,
     /// Contact method.
     pub contact_method: String,
+    /// Where the `compliant` method found its contacts: `pad-face` or `pipeline` (absent for
+    /// the `rapier` method).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_detection: Option<String>,
     /// Time step around contact, s.
     pub step_s: f64,
     /// Time step in free motion, s (the same as `step_s` unless the scenario sets `free_step_s`).
@@ -359,7 +363,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     // Frames at the frame rate, and a quarter more for the steps in contact (all drawn).
     let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
-    let pads = scene.pads().count();
+    let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut trackers = vec![ImpactTracker::default(); pads];
@@ -461,7 +465,7 @@ impl Keeper {
         let t = scene.arm.time_s();
         let mut in_contact = false;
         let mut changed = false;
-        for ((pad, kept), peak) in scene.pads().zip(&self.kept_force_n).zip(&mut self.peak_force_n) {
+        for ((pad, kept), peak) in scene.pairs().zip(&self.kept_force_n).zip(&mut self.peak_force_n) {
             in_contact |= pad.force_n > 0.0;
             *peak = peak.max(pad.force_n);
             changed |= (pad.force_n - kept).abs() > KEPT_FORCE_CHANGE * *peak;
@@ -478,7 +482,7 @@ impl Keeper {
         series.keep.push(keep);
         if keep {
             self.last_kept_s = t;
-            self.kept_force_n.iter_mut().zip(scene.pads()).for_each(|(kept, pad)| *kept = pad.force_n);
+            self.kept_force_n.iter_mut().zip(scene.pairs()).for_each(|(kept, pad)| *kept = pad.force_n);
         }
         if capture && (contact || due(self.last_frame_s, self.frame_period_s)) {
             self.last_frame_s = t;
@@ -526,7 +530,7 @@ fn diverged_step(model: &Model, scene: &Scene, error: SceneError) -> SceneError 
 fn divergence_error(model: &Model, scene: &Scene, d: Divergence) -> SceneError {
     let h = model.time.step_s;
     let advice = scene.divergence_advice(h).unwrap_or_else(|| {
-        let peak_force_n = scene.pads().map(|p| p.force_n).fold(0.0, f64::max).max(1.0);
+        let peak_force_n = scene.pairs().map(|p| p.force_n).fold(0.0, f64::max).max(1.0);
         let penalty = scene.penalty_limits_s(peak_force_n).into_iter().flatten().reduce(f64::min);
         stability_advice(&model.integrator, scene.arm.arm.highest_omega_rad_s, h, penalty)
     });
@@ -551,7 +555,7 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
         series.string_slip_m.push(grip.slip_m);
         series.jaw_sinking_m.push(grip.jaw_sinking_m);
     }
-    for ((pad, forces), tracker) in scene.pads().zip(&mut series.pad_force_n).zip(trackers) {
+    for ((pad, forces), tracker) in scene.pairs().zip(&mut series.pad_force_n).zip(trackers) {
         forces.push(pad.force_n);
         tracker.push(s.t_s, pad.force_n);
     }
@@ -576,10 +580,10 @@ fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
     let qdd = scene.arm.elastic_accelerations();
     let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
     let loads: Vec<PointLoad> = scene
-        .pads()
-        .filter(|p| p.force_n > 0.0)
+        .pairs()
+        .filter(|p| p.force_n > 0.0 && p.side == crate::scene::Side::Arm)
         .map(|p| PointLoad {
-            station_m: p.dampener.station_m,
+            station_m: p.station_m,
             point_m: p.point_m,
             force_n: p.normal_world.map(|n| p.force_n * n),
         })
@@ -612,14 +616,14 @@ fn summarize(
         .enumerate()
         .fold((0, 0.0_f64), |best, (i, t)| if t.abs() > best.1 { (i, t.abs()) } else { best });
     let pairs = scene
-        .pads()
+        .pairs()
         .zip(trackers)
         .map(|(pad, tracker)| {
             let impacts = tracker.impacts();
             let peak = impacts.iter().copied().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n));
             let peak_force_n = peak.map_or(0.0, |p| p.peak_force_n);
             PairSummary {
-                pair: format!("arm–{}", pad.dampener.name),
+                pair: pad.name.clone(),
                 peak_force_n,
                 peak_time_s: peak.map_or(f64::NAN, |p| p.peak_time_s),
                 peak_force_per_payload_weight: if payload_kg > 0.0 {
@@ -642,6 +646,8 @@ fn summarize(
         model_reason: String::new(),
         integrator: model.integrator.to_string(),
         contact_method: model.contact.method.name().into(),
+        contact_detection: (model.contact.method == crate::model::ContactMethod::Compliant)
+            .then(|| scene.detection().name().into()),
         step_s: model.time.step_s,
         free_step_s: model.time.free_step_s.unwrap_or(model.time.step_s),
         steps,

@@ -8,6 +8,7 @@
 
 mod actuator;
 mod drive;
+mod strikes;
 
 use std::path::{Path, PathBuf};
 
@@ -16,17 +17,16 @@ use thiserror::Error;
 
 use crate::arm::Fidelity;
 use crate::beam::{BeamModel, ConcentratedMass};
-use crate::contact::ForceLaw;
 use crate::integrate::IntegratorKind;
 use crate::model::{
-    Clamp, ContactMethod, ContactOptions, Dampener, Drive, Face, FrictionClamp, Grip, HeldString, Model, Payload,
-    PhysicsOptions, TimeOptions,
+    Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
 pub use drive::DriveSpec;
+pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
 pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -77,6 +77,9 @@ pub struct ScenarioSpec {
     /// Rubber dampeners.
     #[serde(default)]
     pub dampeners: Vec<DampenerSpec>,
+    /// Fixed rig structure the arm and the string can strike.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub structures: Vec<StructureSpec>,
     /// How contact forces are computed.
     #[serde(default)]
     pub contact: ContactOptions,
@@ -209,30 +212,6 @@ fn default_friction() -> f64 {
 /// The seed's lab mass blocks, kg.
 pub const LAB_BLOCKS_KG: [f64; 3] = [0.100, 0.206, 0.412];
 
-/// A rubber pad as a scenario states it (angles in degrees).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DampenerSpec {
-    /// Name of the pad (the contact pair is reported as `arm–<name>`).
-    pub name: String,
-    /// Lift angle of the stop the pad is set against, deg.
-    pub angle_deg: f64,
-    /// Arm station the pad's centre faces, m.
-    pub station_m: f64,
-    /// Arm face it touches.
-    pub face: Face,
-    /// Clearance between that face and the pad with the undeformed arm at the stop, m.
-    pub gap_m: f64,
-    /// Pad thickness (normal to the face), m.
-    pub thickness_m: f64,
-    /// Pad extent along the arm, m.
-    pub length_m: f64,
-    /// Pad extent across the lift plane, m.
-    pub width_m: f64,
-    /// Force law of the rubber.
-    pub law: ForceLaw,
-}
-
 /// A scenario file, checked and resolved: what it says, and the model of the machine and scene.
 #[derive(Debug, Clone)]
 pub struct Scenario {
@@ -287,12 +266,15 @@ impl Scenario {
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
         let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
+        let names: Vec<&str> = spec.dampeners.iter().map(|d| d.name.as_str()).collect();
+        let structures = check.structures(&spec.structures, &names)?;
         let mut model = Model {
             name: spec.name.clone(),
             robot,
             payload,
             drive: Drive { motion, actuator },
             dampeners: dampeners?,
+            structures,
             contact: spec.contact,
             fidelity: spec.model.fidelity(),
             physics: spec.physics,
@@ -304,6 +286,7 @@ impl Scenario {
             model.drive.motion = check.shaped(&spec.drive, shaper_hz, &model)?;
         }
         check.model(&model)?;
+        check.structures_clear(&model)?;
         Ok(Scenario { path: path.into(), spec, model })
     }
 }
@@ -646,50 +629,5 @@ impl Check<'_> {
             );
         }
         Ok(())
-    }
-
-    fn dampener(
-        &self,
-        i: usize,
-        d: &DampenerSpec,
-        robot: &Robot,
-        spec: &ScenarioSpec,
-    ) -> Result<Dampener, ScenarioError> {
-        let key = |k: &str| format!("dampeners[{i}].{k}");
-        let length = robot.arm.length_m();
-        if !(d.station_m.is_finite() && (0.0..=length).contains(&d.station_m)) {
-            return Err(
-                self.invalid(&key("station_m"), format!("{} is outside 0 ..= {length} (the arm length)", d.station_m))
-            );
-        }
-        if !(d.angle_deg.is_finite() && (-180.0..=180.0).contains(&d.angle_deg)) {
-            return Err(self.invalid(&key("angle_deg"), format!("{} is outside -180 ..= 180", d.angle_deg)));
-        }
-        if !(d.gap_m.is_finite() && (0.0..=1.0).contains(&d.gap_m)) {
-            return Err(self.invalid(&key("gap_m"), format!("{} is outside 0 ..= 1", d.gap_m)));
-        }
-        for (name, v) in [("thickness_m", d.thickness_m), ("length_m", d.length_m), ("width_m", d.width_m)] {
-            if !(v.is_finite() && v > 0.0 && v <= 5.0) {
-                return Err(self.invalid(&key(name), format!("{v} is outside 0 < {name} <= 5")));
-            }
-        }
-        d.law.validate().map_err(|(name, v, allowed)| {
-            self.invalid(&key(&format!("law.{name}")), format!("{v} is outside {allowed}"))
-        })?;
-        let dampener = Dampener {
-            name: d.name.clone(),
-            angle_rad: d.angle_deg.to_radians(),
-            station_m: d.station_m,
-            face: d.face,
-            gap_m: d.gap_m,
-            thickness_m: d.thickness_m,
-            length_m: d.length_m,
-            width_m: d.width_m,
-            law: d.law,
-        };
-        if spec.contact.method == ContactMethod::Rapier {
-            crate::scene::rapier_pad_spring(&dampener).map_err(|(k, message)| self.invalid(&key(k), message))?;
-        }
-        Ok(dampener)
     }
 }

@@ -358,3 +358,29 @@ fn grips_off_the_string_beyond_the_arm_or_on_one_another_are_named() {
     );
     assert!(e.contains("payload.model.modes") && e.contains("1 ..="), "{e}");
 }
+
+#[test]
+fn a_bad_structure_is_named() {
+    let guide = |shape: &str, position: &str, law: &str| {
+        format!("\n[[structures]]\nname = \"guide\"\nshape = {shape}\nposition_m = {position}\nlaw = {law}\n")
+    };
+    let (boxed, clear, law) = (
+        "{ kind = \"box\", size_m = [0.2, 0.6, 0.3] }",
+        "[-0.1335, 2.6, 0.65]",
+        "{ kind = \"linear\", stiffness_n_m = 1e7, damping_n_s_m = 0.0 }",
+    );
+    // An unknown shape.
+    let e = refused_run("structure-shape", with(guide("{ kind = \"sphere\", radius_m = 0.2 }", clear, law)), same);
+    assert!(e.contains("shape = ") && e.contains("sphere") && e.contains("box") && e.contains("cylinder"), "{e}");
+    // A structure inside the arm lying on the catwalk at the drive's start (the arm's box runs
+    // along x from the pivot at y = 1.2 m).
+    let e = refused_run("structure-inside", with(guide(boxed, "[4.0, 1.2, 0.0]", law)), same);
+    assert!(e.contains("structures[0].position_m") && e.contains("overlaps the arm"), "{e}");
+    // A law without its parameters.
+    let e = refused_run("structure-law", with(guide(boxed, clear, "{ kind = \"linear\", stiffness_n_m = 1e7 }")), same);
+    assert!(e.contains("law = ") && e.contains("missing field `damping_n_s_m`"), "{e}");
+    // A negative size.
+    let e =
+        refused_run("structure-size", with(guide("{ kind = \"box\", size_m = [0.2, -0.6, 0.3] }", clear, law)), same);
+    assert!(e.contains("structures[0].shape.size_m") && e.contains("0 < size"), "{e}");
+}

@@ -64,7 +64,7 @@ fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
         let h = 2e-5;
         for _ in 0..5000 {
             scene.step(h).unwrap();
-            let f = scene.pads().next().unwrap().force_n;
+            let f = scene.pairs().next().unwrap().force_n;
             let t = scene.arm.time_s();
             if f > 0.0 {
                 peak = peak.max(f);

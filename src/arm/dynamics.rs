@@ -196,6 +196,7 @@ impl<'a> ArmSystem<'a> {
         for contact in self.contacts {
             let state = contact.state(hub, q, qd);
             contact.add_direction(&state, state.force_n, f_q);
+            contact.add_friction(&state, f_q);
             if let Some(f) = f_theta.as_deref_mut() {
                 *f += state.moment_n_m;
             }

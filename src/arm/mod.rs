@@ -277,6 +277,14 @@ impl ArmModel {
         StationRows(self.beam.point_rows(x_m).map(|r| self.basis.tr_mul(&r)))
     }
 
+    /// The shape rows of a flexible string's station `x_m` (hub-frame x, clamped onto the string)
+    /// projected on q; `None` without a string of its own.
+    pub fn string_station_rows(&self, x_m: f64) -> Option<StationRows> {
+        let member = self.beam.member.as_ref()?;
+        let [u, v, phi, _] = member.point_rows(x_m, self.beam.dofs());
+        Some(StationRows([u, v, phi].map(|r| self.basis.tr_mul(&r))))
+    }
+
     /// Static elastic coordinates under gravity with the hub held at `angle_rad`:
     /// (K − g sin θ K_g) q = −g (sin θ b_u + cos θ b_v).
     pub fn static_deflection(&self, angle_rad: f64) -> Result<DVector<f64>, ArmError> {

@@ -23,7 +23,7 @@ pub fn compare_command(
     let defs = pipearm::compare::signal_defs(model);
     let overlay =
         pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;
-    let pads: Vec<String> = model.dampeners.iter().map(|d| d.name.clone()).collect();
+    let pads = model.pair_series_names();
     let ending = Ending::Finished(&compared.summary);
     let recorded = Recorded { series: &compared.series, pad_names: &pads, ending, overlay: &overlay };
     let rrd = out.join(format!("{}.compare.rrd", model.name));

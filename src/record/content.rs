@@ -9,6 +9,7 @@ use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, Text
 
 use super::{Ending, Recorded, force_entity};
 use crate::contact::{Impact, ImpactTracker};
+use crate::model::StructureShape;
 use crate::scene::{Frame, SceneLayout};
 
 /// Display magnification of the deflection: a power of ten that makes the largest tip
@@ -259,7 +260,38 @@ impl Writer<'_> {
         if let Some(cylinder) = &layout.cylinder {
             self.cylinder(cylinder, layout.pivot_m)?;
         }
+        self.structures(layout)?;
         Ok(note)
+    }
+
+    /// The rig structures, fixed: boxes and cylinders (standing along world z), labelled.
+    fn structures(&mut self, layout: &SceneLayout) -> RecordingStreamResult<()> {
+        let colour = rerun::Color::from_rgb(150, 120, 60);
+        for (name, pose, shape) in &layout.structures {
+            let entity = format!("world/structures/{name}");
+            match *shape {
+                StructureShape::Box { half_extents_m } => self.log_static(
+                    &entity,
+                    &rerun::Boxes3D::from_centers_and_half_sizes(
+                        [vec3(pose.translation)],
+                        [half_extents_m.map(|v| v as f32)],
+                    )
+                    .with_quaternions([quat(pose.rotation)])
+                    .with_labels([name.clone()])
+                    .with_colors([colour])
+                    .with_fill_mode(rerun::FillMode::Solid),
+                )?,
+                StructureShape::Cylinder { radius_m, half_length_m } => self.log_static(
+                    &entity,
+                    &rerun::Cylinders3D::from_lengths_and_radii([2.0 * half_length_m as f32], [radius_m as f32])
+                        .with_centers([vec3(pose.translation)])
+                        .with_labels([name.clone()])
+                        .with_colors([colour])
+                        .with_fill_mode(rerun::FillMode::Solid),
+                )?,
+            }
+        }
+        Ok(())
     }
 
     /// The lift cylinder between its pins, per frame: barrel (bore) from the base pin, rod from

@@ -64,9 +64,14 @@ pub enum RecordError {
     Json { path: String, source: serde_json::Error },
 }
 
-/// Entity path of a pad's contact force series.
-pub fn force_entity(pad: &str) -> String {
-    format!("plots/contact_force/arm-{pad}")
+/// Entity path of a contact pair's force series, from its series name
+/// ([`crate::model::Model::pair_series_names`]: `<pad>`, `<structure>` or `string-<structure>`).
+pub fn force_entity(series_name: &str) -> String {
+    if series_name.starts_with("string-") {
+        format!("plots/contact_force/{series_name}")
+    } else {
+        format!("plots/contact_force/arm-{series_name}")
+    }
 }
 
 /// Entity path of the transverse tip deflection series.

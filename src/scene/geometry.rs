@@ -17,6 +17,9 @@ pub struct ArmPiece {
     pub name: String,
     /// True for the finite-element boxes of the arm itself.
     pub is_arm_element: bool,
+    /// True for the segments of a string modelled as a beam of its own: they ride on the string's
+    /// section at their station, not the arm's, and are drawn as its centreline.
+    pub on_string: bool,
     /// Station of the shape's centre, m.
     pub station_m: f64,
     /// Offset of its centre across the arm (body y), m.
@@ -57,6 +60,7 @@ impl ArmPiece {
         ArmPiece {
             name: name.into(),
             is_arm_element: false,
+            on_string: false,
             station_m,
             lateral_m,
             normal_offset_m,
@@ -80,8 +84,36 @@ impl ArmPiece {
 }
 
 /// Every shape of the scene that rides on the arm: the hub, the arm's elements (`beam`'s mesh),
-/// the carried bodies and a held string.
+/// the carried bodies and a held string (one piece, lumped or not).
 pub fn shapes_of_robot(model: &Model, beam: &BeamModel) -> Vec<ArmPiece> {
+    shapes_over(model, beam.elements.iter().map(|el| (el.x0_m, el.length_m)))
+}
+
+/// Segments a flexible string's surface is cut into for contact: each a cylinder riding on the
+/// string's section at its middle, a fraction of the span between its hands long.
+const STRING_SEGMENTS: usize = 24;
+
+/// A flexible string's contact segments, from the one-piece `string` of [`shapes_of_robot`]; the
+/// arm model gives each its station's rows on the string's coordinates.
+pub fn string_segments(string: &ArmPiece, arm: &ArmModel) -> Vec<ArmPiece> {
+    let [radius, half_length, _] = string.half_extents_m;
+    let segment = 2.0 * half_length / STRING_SEGMENTS as f64;
+    (0..STRING_SEGMENTS)
+        .filter_map(|i| {
+            let station = string.station_m - half_length + (i as f64 + 0.5) * segment;
+            let rows = arm.string_station_rows(station)?;
+            let shape = SharedShape::cylinder(0.5 * segment, radius);
+            let at = [station, string.lateral_m, string.normal_offset_m];
+            let mut piece = ArmPiece::new("string", at, string.local_rotation, [radius, 0.5 * segment, radius], shape);
+            piece.on_string = true;
+            piece.rows = rows;
+            Some(piece)
+        })
+        .collect()
+}
+
+/// The pieces of [`shapes_of_robot`] over the arm's elements given as (start, length), m.
+pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f64)>) -> Vec<ArmPiece> {
     let robot = &model.robot;
     let (width, depth) = (robot.arm.width_m(), robot.arm.depth_m());
     // The hub: a drum on the pivot, turning with the drive.
@@ -89,10 +121,10 @@ pub fn shapes_of_robot(model: &Model, beam: &BeamModel) -> Vec<ArmPiece> {
     let drum = Rotation::from_rotation_x(std::f64::consts::FRAC_PI_2);
     let hub_shape = SharedShape::cylinder(hub_half_length, hub_radius);
     let mut pieces = vec![ArmPiece::new("hub", [0.0; 3], drum, [hub_radius, hub_half_length, hub_radius], hub_shape)];
-    for el in &beam.elements {
-        let half = [0.5 * el.length_m, 0.5 * depth, 0.5 * width];
+    for (x0_m, length_m) in elements {
+        let half = [0.5 * length_m, 0.5 * depth, 0.5 * width];
         let shape = SharedShape::cuboid(half[0], half[1], half[2]);
-        let mut piece = ArmPiece::new("arm", [el.x0_m + 0.5 * el.length_m, 0.0, 0.0], Rotation::IDENTITY, half, shape);
+        let mut piece = ArmPiece::new("arm", [x0_m + 0.5 * length_m, 0.0, 0.0], Rotation::IDENTITY, half, shape);
         piece.is_arm_element = true;
         piece.depth_m = depth;
         pieces.push(piece);

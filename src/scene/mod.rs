@@ -15,9 +15,11 @@
 //! 6. measure its forces.
 
 mod clamp;
-mod compliant;
 mod geometry;
+mod pad_faces;
 mod pads;
+mod pair;
+mod pipeline;
 mod rapier_pads;
 mod source;
 
@@ -28,13 +30,15 @@ use rapier3d_f64::prelude::*;
 use crate::arm::{ArmError, ArmModel, ArmSimulation, GeneralizedLoad};
 use crate::drive::DriveState;
 use crate::integrate::StepControl;
-use crate::model::{ContactMethod, Model};
+use crate::model::{ContactMethod, Detection, Model, StructureShape};
 use clamp::ClampPlacement;
 pub use clamp::FrictionGrip;
-use compliant::CompliantPads;
 pub use geometry::{ArmPiece, ArmView};
-use geometry::{pose_piece, shapes_of_robot};
-pub use pads::Pad;
+use geometry::{pose_piece, shapes_of_robot, string_segments};
+use pad_faces::PadFaces;
+pub use pair::{ContactPair, Obstacle, PointReading, Side, structure_in_rest_pose};
+use pipeline::PipelineContacts;
+pub use pipeline::{ManifoldPoint, manifold_between};
 use rapier_pads::RapierPads;
 pub use rapier_pads::{UnsupportedPad, rapier_pad_spring};
 pub use source::ContactSource;
@@ -49,6 +53,8 @@ pub struct Scene {
     sources: Vec<Box<dyn ContactSource>>,
     /// Per source, the range of the arm's contacts it found for the last step.
     spans: Vec<Range<usize>>,
+    /// Where the `compliant` method finds its contacts (`auto` resolved).
+    detection: Detection,
     /// Stations at which a frame samples the centreline, with their rows.
     centreline: Vec<(f64, crate::arm::StationRows)>,
     /// The held string's probe, if the arm holds one.
@@ -113,14 +119,24 @@ impl Scene {
         let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
         let mut pieces = riding;
         let string_normal_offset_m = pieces.iter().find(|p| p.name == "string").map_or(0.0, |p| p.normal_offset_m);
-        // A flexible string is drawn as its deformed centreline, not as a rigid piece.
-        pieces.retain(|p| !(p.name == "string" && string.as_ref().is_some_and(|s| s.is_flexible())));
         for piece in &mut pieces {
             piece.rows = arm.arm.station_rows(piece.station_m);
         }
-        let pads: Vec<Pad> =
-            model.dampeners.iter().map(|d| Pad::place(d, &pieces, &arm.arm, model.robot.lift.pivot_m)).collect();
-        mark_pieces_near_pads(&mut pieces, &pads);
+        // A flexible string rides on its own sections: cut into segments that do.
+        if string.as_ref().is_some_and(|s| s.is_flexible())
+            && let Some(i) = pieces.iter().position(|p| p.name == "string")
+        {
+            let whole = pieces.remove(i);
+            pieces.extend(string_segments(&whole, &arm.arm));
+        }
+        let pivot = model.robot.lift.pivot_m;
+        let mut pairs: Vec<ContactPair> =
+            model.dampeners.iter().map(|d| ContactPair::pad(d, &pieces, &arm.arm, pivot)).collect();
+        let sides = if model.payload.string().is_some() { &[Side::Arm, Side::String][..] } else { &[Side::Arm] };
+        for structure in &model.structures {
+            pairs.extend(sides.iter().map(|side| ContactPair::structure(structure, *side)));
+        }
+        mark_pieces_near(&mut pieces, &pairs, pivot);
         let length = arm.arm.length_m();
         let centreline = (0..=CENTRELINE_STATIONS)
             .map(|i| length * i as f64 / CENTRELINE_STATIONS as f64)
@@ -132,14 +148,17 @@ impl Scene {
             pivot_m: model.robot.lift.pivot_m,
             sources: Vec::new(),
             spans: Vec::new(),
+            detection: Detection::Auto,
             centreline,
             string,
             string_normal_offset_m,
         };
-        let pads: Box<dyn ContactSource> = match model.contact.method {
-            ContactMethod::Compliant => Box::new(CompliantPads::new(pads)),
-            ContactMethod::Rapier => Box::new(scene.with_view(|view| {
-                RapierPads::new(view, pads, model.physics.gravity_m_s2, model.time.step_s, model.contact.pad_mass_kg)
+        scene.detection = detection(model.contact.detection, &pairs);
+        let pads: Box<dyn ContactSource> = match (model.contact.method, scene.detection) {
+            (ContactMethod::Compliant, Detection::PadFace) => Box::new(PadFaces::new(pairs)),
+            (ContactMethod::Compliant, _) => Box::new(scene.with_view(|view| PipelineContacts::new(view, pairs))),
+            (ContactMethod::Rapier, _) => Box::new(scene.with_view(|view| {
+                RapierPads::new(view, pairs, model.physics.gravity_m_s2, model.time.step_s, model.contact.pad_mass_kg)
             })?),
         };
         scene.sources.push(pads);
@@ -225,14 +244,19 @@ impl Scene {
         }
     }
 
+    /// Where the `compliant` method finds its contacts: `pad-face` or `pipeline`.
+    pub fn detection(&self) -> Detection {
+        self.detection
+    }
+
     /// The hub state at the arm's current time.
     pub fn hub(&self) -> DriveState {
         self.arm.kinematics().0
     }
 
-    /// Every pad of the scene, with its force at the end of the last step.
-    pub fn pads(&self) -> impl Iterator<Item = &Pad> {
-        self.sources.iter().flat_map(|s| s.pads())
+    /// Every contact pair of the scene, with its force at the end of the last step.
+    pub fn pairs(&self) -> impl Iterator<Item = &ContactPair> {
+        self.sources.iter().flat_map(|s| s.pairs())
     }
 
     /// The friction clamp, if the string is held by one.
@@ -255,30 +279,40 @@ impl Scene {
     /// held, 1 / (rᵀ M⁻¹ r), kg. `None` for a rigid arm on a prescribed hub (infinite).
     pub fn pad_effective_masses_kg(&self) -> Vec<Option<f64>> {
         let inverse = self.arm.arm.mass.clone().try_inverse().filter(|m| m.nrows() > 0);
-        self.pads().map(|pad| pad.effective_mass_kg(inverse.as_ref())).collect()
+        self.pairs().map(|pair| pair.effective_mass_kg(inverse.as_ref())).collect()
     }
 
     /// Per pad, the explicit stability limit of its penalty contact, 2√(m_eff/k), s, with k the
     /// law's tangent stiffness at `force_n` ([`Self::pad_effective_masses_kg`] for m_eff).
     pub fn penalty_limits_s(&self, force_n: f64) -> Vec<Option<f64>> {
-        self.pads()
+        self.pairs()
             .zip(self.pad_effective_masses_kg())
-            .map(|(pad, m_eff)| {
-                let k = pad.dampener.law.tangent_stiffness_at_force(force_n);
+            .map(|(pair, m_eff)| {
+                let k = pair.obstacle.law().tangent_stiffness_at_force(force_n);
                 m_eff.filter(|_| k > 0.0).map(|m| 2.0 * (m / k).sqrt())
             })
             .collect()
     }
 
-    /// What is drawn and never changes shape: each piece's and pad's name and half extents (m).
+    /// What is drawn and never changes shape: each piece's and pad's name and half extents (m),
+    /// each structure with its pose.
     pub fn layout(&self) -> SceneLayout {
-        let pads = self.pads().map(|p| {
-            let d = &p.dampener;
-            (d.name.clone(), [0.5 * d.length_m, 0.5 * d.thickness_m, 0.5 * d.width_m])
-        });
+        let pads = self
+            .pairs()
+            .filter_map(|p| p.dampener())
+            .map(|d| (d.name.clone(), [0.5 * d.length_m, 0.5 * d.thickness_m, 0.5 * d.width_m]));
+        let mut structures: Vec<(String, Pose, StructureShape)> = Vec::new();
+        for pair in self.pairs() {
+            if let Obstacle::Structure(s) = &pair.obstacle
+                && !structures.iter().any(|(name, ..)| *name == s.name)
+            {
+                structures.push((s.name.clone(), pair.pose, s.shape));
+            }
+        }
         SceneLayout {
-            pieces: self.pieces.iter().map(|p| (p.name.clone(), p.half_extents_m)).collect(),
+            pieces: self.drawn_pieces().map(|p| (p.name.clone(), p.half_extents_m)).collect(),
             pads: pads.collect(),
+            structures,
             pivot_m: self.pivot_m,
             length_m: self.arm.arm.length_m(),
             string_normal_offset_m: self.string_normal_offset_m,
@@ -289,19 +323,21 @@ impl Scene {
         }
     }
 
+    /// The pieces drawn as shapes (a flexible string's segments are drawn as its centreline).
+    fn drawn_pieces(&self) -> impl Iterator<Item = &ArmPiece> {
+        self.pieces.iter().filter(|p| !p.on_string)
+    }
+
     /// The scene's state for drawing, from the arm's current state (poses in `layout` order).
     pub fn frame(&self) -> Frame {
         // The kinematics only: the torque and energies `sample` would compute are not drawn.
         let (hub, q, _) = self.arm.kinematics();
-        let pieces = self.pieces.iter().map(|p| pose_piece(p, &hub, &q, self.pivot_m)).collect();
-        let pads = self.pads().map(|p| p.pose).collect();
+        let pieces = self.drawn_pieces().map(|p| pose_piece(p, &hub, &q, self.pivot_m)).collect();
+        let pads = self.pairs().filter(|p| p.dampener().is_some()).map(|p| p.pose).collect();
         let contacts = self
-            .pads()
+            .pairs()
             .filter(|p| p.force_n > 0.0)
-            .map(|p| {
-                let point = [p.point_m[0] + self.pivot_m[0], p.point_m[1] + self.pivot_m[1], self.pivot_m[2]];
-                (p.dampener.name.clone(), point, [p.force_n * p.normal_world[0], p.force_n * p.normal_world[1]])
-            })
+            .flat_map(|p| p.points.iter().map(|r| (p.name.clone(), r.point_m, r.force_n)))
             .collect();
         let centreline = self
             .centreline
@@ -324,13 +360,35 @@ impl Scene {
     }
 }
 
-/// Marks the shapes whose extent along the arm comes within 0.5 m of a pad: only those are posed
-/// for contact.
-fn mark_pieces_near_pads(pieces: &mut [ArmPiece], pads: &[Pad]) {
+/// Where the `compliant` method finds the contacts of `pairs`, `auto` resolved: `pad-face` where
+/// every pair is a pad only the arm's own face can reach (where it agrees with the pipeline,
+/// docs/scene.md), else `pipeline`.
+fn detection(chosen: Detection, pairs: &[ContactPair]) -> Detection {
+    let pads_on_the_face = pairs.iter().all(|p| p.pad.as_ref().is_some_and(|pad| pad.arm_face_only()));
+    match chosen {
+        Detection::Auto if pads_on_the_face => Detection::PadFace,
+        Detection::Auto => Detection::Pipeline,
+        chosen => chosen,
+    }
+}
+
+/// Marks the shapes that can come within 0.5 m of an obstacle of their side: only those are
+/// posed for contact. A pad by its extent along the arm; a structure by distance from the pivot
+/// (the arm turns about it: a piece sweeps a ring, the structure must come near the ring).
+fn mark_pieces_near(pieces: &mut [ArmPiece], pairs: &[ContactPair], pivot_m: [f64; 3]) {
     for piece in pieces {
-        let reach = piece.half_extents_m.iter().fold(0.0_f64, |a, b| a.max(*b)) + 0.5;
-        piece.near_pad =
-            pads.iter().any(|p| (p.dampener.station_m - piece.station_m).abs() <= 0.5 * p.dampener.length_m + reach);
+        let size = piece.half_extents_m.iter().fold(0.0_f64, |a, b| a.max(*b));
+        let reach = size + 0.5;
+        let radius = piece.station_m.hypot(piece.lateral_m);
+        piece.near_pad = pairs.iter().filter(|p| p.involves(piece)).any(|p| match (p.dampener(), &p.obstacle) {
+            (Some(d), _) => (d.station_m - piece.station_m).abs() <= 0.5 * d.length_m + reach,
+            (None, Obstacle::Structure(s)) => {
+                let size = s.shape.bounding_radius_m();
+                let centre = (s.position_m[0] - pivot_m[0]).hypot(s.position_m[1] - pivot_m[1]);
+                (centre - radius).abs() <= size + reach
+            }
+            _ => false,
+        });
     }
 }
 
@@ -341,6 +399,8 @@ pub struct SceneLayout {
     pub pieces: Vec<(String, [f64; 3])>,
     /// Pad names and half extents, m.
     pub pads: Vec<(String, [f64; 3])>,
+    /// Structures: name, world pose, shape.
+    pub structures: Vec<(String, Pose, StructureShape)>,
     /// Pivot in the world, m.
     pub pivot_m: [f64; 3],
     /// Arm length, m.
@@ -362,7 +422,7 @@ pub struct Frame {
     pub pieces: Vec<Pose>,
     /// World pose of each pad.
     pub pads: Vec<Pose>,
-    /// Pads in contact: name, world point (m), force on the arm (world X, Y, N).
+    /// Contact points: pair name, world point (m), force on the machine (world X, Y, N).
     pub contacts: Vec<(String, [f64; 3], [f64; 2])>,
     /// Centreline: station (m) and displacement in the hub frame (axial, transverse, m).
     pub centreline: Vec<(f64, [f64; 2])>,

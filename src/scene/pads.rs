@@ -1,53 +1,45 @@
-//! Rubber pads placed against the arm at their stops, and what every contact method knows of
-//! them: where their face is, how far the arm is from it, and the force measured on it.
+//! Rubber pads placed against the arm at their stops: where their face is and how far the arm is
+//! from it.
 
 use nalgebra::DVector;
 use rapier3d_f64::prelude::*;
 
 use super::geometry::{ArmPiece, ArmView};
-use crate::arm::{ArmModel, StationRows};
+use crate::arm::{ArmContact, ArmModel, PointContact, StationRows};
 use crate::model::Dampener;
 
-/// A rubber pad in the scene and its state at the end of the last step.
+/// Where a rubber pad sits against the arm: its face, and the arm's face point at its station.
 #[derive(Debug, Clone)]
-pub struct Pad {
-    /// Its description.
-    pub dampener: Dampener,
+pub struct PadPlacement {
+    /// Its length along the arm, m.
+    length_m: f64,
     /// Unit normal of its face in the world (X, Y), pointing at the arm.
     pub normal_world: [f64; 2],
     /// World position of its face centre, m.
     pub face_centre_m: [f64; 3],
-    /// World pose of its centre (where the `rapier` method's pad body is now).
-    pub pose: Pose,
-    /// Its shape, a box, in its own frame.
-    pub shape: SharedShape,
-    /// Force at the end of the last step, N.
-    pub force_n: f64,
-    /// How far the pad is compressed at the end of the last step, m (the arm's penetration for
-    /// `compliant`, the pad body's travel for `rapier`); beyond the pad's thickness the run is
-    /// meaningless.
-    pub compression_m: f64,
-    /// Point of application of that force relative to the pivot (world X, Y), m.
-    pub point_m: [f64; 2],
-    /// Name of the arm part touching it.
-    pub touching: Option<String>,
     /// The arm's face point at the pad's station, to measure the clearance cheaply.
     watch: PadWatch,
 }
+
+/// Margin on a pad's clearance beyond what stands out of the arm's face, m.
+const FACE_MARGIN_M: f64 = 1e-4;
 
 /// The arm's face point at a pad's station.
 #[derive(Debug, Clone)]
 struct PadWatch {
     rows: StationRows,
+    /// The pad's station, m.
+    station_m: f64,
     /// Body-frame y of the face that meets the pad, m.
     face_lateral_m: f64,
     /// Extra clearance for shapes standing out beyond the face, plus 0.1 mm, m.
     margin_m: f64,
 }
 
-impl Pad {
-    /// Places a pad against the undeformed arm at its stop, `gap_m` from the named face.
-    pub fn place(dampener: &Dampener, pieces: &[ArmPiece], arm: &ArmModel, pivot_m: [f64; 3]) -> Self {
+impl PadPlacement {
+    /// Places a pad against the undeformed arm at its stop, `gap_m` from the named face; with
+    /// the world pose of the pad's centre.
+    pub fn place(dampener: &Dampener, pieces: &[ArmPiece], arm: &ArmModel, pivot_m: [f64; 3]) -> (Self, Pose) {
         let spec = dampener;
         let theta = spec.angle_rad;
         let (s, c) = theta.sin_cos();
@@ -70,22 +62,18 @@ impl Pad {
                 overlaps.then_some(sign * p.lateral_m + ext_y - half_depth)
             })
             .fold(0.0, f64::max);
-        Pad {
-            dampener: spec.clone(),
+        let placement = PadPlacement {
+            length_m: spec.length_m,
             normal_world: [sign * s, -sign * c],
             face_centre_m: to_world(spec.station_m, face_y),
-            pose,
-            shape: SharedShape::cuboid(0.5 * spec.length_m, 0.5 * spec.thickness_m, 0.5 * spec.width_m),
-            force_n: 0.0,
-            compression_m: 0.0,
-            point_m: [0.0; 2],
-            touching: None,
             watch: PadWatch {
                 rows: arm.station_rows(spec.station_m),
+                station_m: spec.station_m,
                 face_lateral_m: sign * half_depth,
-                margin_m: protrusion + 1e-4,
+                margin_m: protrusion + FACE_MARGIN_M,
             },
-        }
+        };
+        (placement, pose)
     }
 
     /// Distance from the pad's face to the arm's face, m: the nearer of the face's two ends from
@@ -95,14 +83,14 @@ impl Pad {
     pub fn clearance_m(&self, arm: &ArmView) -> f64 {
         let [u, v, phi] = self.watch.rows.displacement(arm.q);
         let lateral = self.watch.face_lateral_m;
-        let (x, y) = (self.dampener.station_m + u - lateral * phi, lateral + v);
+        let (x, y) = (self.watch.station_m + u - lateral * phi, lateral + v);
         let (s, c) = arm.hub.angle_rad.sin_cos();
         let point = [arm.pivot_m[0] + c * x - s * y, arm.pivot_m[1] + s * x + c * y];
         // The face's outward normal: the body's ±y turned by the hub angle and the slope.
         let (sf, cf) = (arm.hub.angle_rad + phi).sin_cos();
         let outward = [-sf * lateral.signum(), cf * lateral.signum()];
         let n = self.normal_world;
-        let half = 0.5 * self.dampener.length_m;
+        let half = 0.5 * self.length_m;
         [-1.0, 1.0]
             .map(|side| {
                 let end = [self.face_centre_m[0] - side * half * n[1], self.face_centre_m[1] + side * half * n[0]];
@@ -110,6 +98,48 @@ impl Pad {
             })
             .into_iter()
             .fold(f64::INFINITY, f64::min)
+    }
+
+    /// The arm's face opposite each end of the pad's face, as contacts that each carry half of
+    /// `law` for pair `pair`: the arm's face is its tangent line at the pad's station (with the
+    /// elastic slope), the penetration measured along the pad's normal.
+    pub fn end_contacts(&self, arm: &ArmView, pair: usize, law: crate::contact::ForceLaw) -> [ArmContact; 2] {
+        let [u, v, phi] = self.watch.rows.displacement(arm.q);
+        let lateral = self.watch.face_lateral_m;
+        let (x, y) = (self.watch.station_m + u - lateral * phi, lateral + v);
+        let (s, c) = arm.hub.angle_rad.sin_cos();
+        // The arm's face point at the station and the face's direction, relative to the pivot.
+        let face = [c * x - s * y, s * x + c * y];
+        let (sf, cf) = (arm.hub.angle_rad + phi).sin_cos();
+        let n = self.normal_world;
+        let half = 0.5 * self.length_m;
+        [-1.0, 1.0].map(|side| {
+            let end = [
+                self.face_centre_m[0] - arm.pivot_m[0] - side * half * n[1],
+                self.face_centre_m[1] - arm.pivot_m[1] + side * half * n[0],
+            ];
+            let along_m = cf * (end[0] - face[0]) + sf * (end[1] - face[1]);
+            let opposite = [face[0] + along_m * cf, face[1] + along_m * sf];
+            let point = PointContact {
+                pair,
+                station_m: self.watch.station_m + along_m,
+                lateral_m: lateral,
+                normal_world: n,
+                depth_m: n[0] * (end[0] - opposite[0]) + n[1] * (end[1] - opposite[1]),
+                reference_point_m: opposite,
+                law,
+                impact_speed_m_s: 0.0,
+                share: 0.5,
+                friction: 0.0,
+            };
+            ArmContact::on_section(point, &self.watch.rows, along_m)
+        })
+    }
+
+    /// Whether only the arm's own face can reach the pad (no shape riding on the arm stands out
+    /// beyond it across the pad's length).
+    pub fn arm_face_only(&self) -> bool {
+        self.watch.margin_m <= FACE_MARGIN_M
     }
 
     /// Whether the arm could reach the pad within `travel_m`, the fastest point's travel in the
@@ -124,23 +154,6 @@ impl Pad {
         let row: &DVector<f64> = &self.watch.rows.0[1];
         let m_eff = 1.0 / row.dot(&(mass_inverse? * row));
         m_eff.is_finite().then_some(m_eff)
-    }
-
-    /// What makes the pad's state meaningless: a force that is not finite, or the pad crushed
-    /// beyond its thickness.
-    pub fn fault(&self) -> Option<String> {
-        let name = &self.dampener.name;
-        if !self.force_n.is_finite() {
-            Some(format!("pad {name}'s contact force is no longer finite"))
-        } else if self.compression_m > self.dampener.thickness_m {
-            Some(format!(
-                "pad {name} is compressed {:.1} mm, beyond its {:.1} mm thickness",
-                1e3 * self.compression_m,
-                1e3 * self.dampener.thickness_m
-            ))
-        } else {
-            None
-        }
     }
 }
 

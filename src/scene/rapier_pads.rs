@@ -9,7 +9,7 @@ use std::any::Any;
 use rapier3d_f64::prelude::*;
 
 use super::geometry::ArmView;
-use super::pads::Pad;
+use super::pair::{ContactPair, PointReading};
 use super::source::ContactSource;
 use crate::arm::{ArmContact, GeneralizedLoad};
 use crate::contact::ForceLaw;
@@ -53,7 +53,7 @@ struct PadSpring {
 /// Pads as rapier bodies on springs, struck by the arm's shapes in rapier's world.
 pub struct RapierPads {
     world: PhysicsWorld,
-    pads: Vec<Pad>,
+    pads: Vec<ContactPair>,
     /// Per pad: its body, collider and mount.
     bodies: Vec<(RigidBodyHandle, ColliderHandle, PadSpring)>,
     /// Per arm piece (the scene's order): its kinematic body and collider.
@@ -66,7 +66,7 @@ pub struct RapierPads {
 
 /// Why a pad cannot be a rapier body.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("dampener {name}: key `{key}`: {message}")]
+#[error("{name}: key `{key}`: {message}")]
 pub struct UnsupportedPad {
     /// The pad.
     pub name: String,
@@ -80,7 +80,7 @@ impl RapierPads {
     /// rapier's world of the arm's shapes (posed from `arm`) and the pads on their mounts.
     pub fn new(
         arm: &ArmView,
-        pads: Vec<Pad>,
+        pads: Vec<ContactPair>,
         gravity_m_s2: f64,
         step_s: f64,
         pad_mass_kg: f64,
@@ -102,8 +102,13 @@ impl RapierPads {
             .collect();
         let mut bodies = Vec::with_capacity(pads.len());
         for pad in &pads {
-            let (stiffness_n_m, damping_n_s_m) = rapier_pad_spring(&pad.dampener)
-                .map_err(|(key, message)| UnsupportedPad { name: pad.dampener.name.clone(), key, message })?;
+            let dampener = pad.dampener().ok_or_else(|| UnsupportedPad {
+                name: pad.obstacle.name().into(),
+                key: "contact.method",
+                message: "the rapier method models pads only: allowed method \"compliant\" with structures".into(),
+            })?;
+            let (stiffness_n_m, damping_n_s_m) = rapier_pad_spring(dampener)
+                .map_err(|(key, message)| UnsupportedPad { name: dampener.name.clone(), key, message })?;
             let t = pad.pose.translation;
             let spring = PadSpring { rest_m: [t.x, t.y, t.z], stiffness_n_m, damping_n_s_m };
             // The pad slides along its normal only.
@@ -177,7 +182,7 @@ impl ContactSource for RapierPads {
     fn measure(&mut self, arm: &ArmView, _contacts: &[ArmContact]) {
         self.handed_over.clear();
         for (pad, &(handle, collider, spring)) in self.pads.iter_mut().zip(&self.bodies) {
-            pad.force_n = 0.0;
+            pad.clear_measurement();
             pad.touching = None;
             if let Some(body) = self.world.bodies.get(handle) {
                 let travel = [0, 1].map(|k| spring.rest_m[k] - body.translation()[k]);
@@ -203,13 +208,17 @@ impl ContactSource for RapierPads {
                 let (station, _) = piece.station_of(arm_collider.position(), [point.x, point.y, point.z]);
                 pad.force_n += force;
                 pad.point_m = [point.x - arm.pivot_m[0], point.y - arm.pivot_m[1]];
+                pad.station_m = station;
+                let n = pad.normal_world;
+                pad.points
+                    .push(PointReading { point_m: [point.x, point.y, point.z], force_n: [force * n[0], force * n[1]] });
                 pad.touching = Some(piece.name.clone());
                 self.handed_over.push((station, [force * pad.normal_world[0], force * pad.normal_world[1]]));
             }
         }
     }
 
-    fn pads(&self) -> &[Pad] {
+    fn pairs(&self) -> &[ContactPair] {
         &self.pads
     }
 
@@ -218,14 +227,14 @@ impl ContactSource for RapierPads {
     }
 
     fn fault(&self) -> Option<String> {
-        self.pads.iter().find_map(Pad::fault)
+        self.pads.iter().find_map(ContactPair::fault)
     }
 
     fn divergence_advice(&self, _step_s: f64) -> Option<String> {
         let limit = self
             .pads
             .iter()
-            .filter_map(|p| p.dampener.law.explicit_body_limit_s(self.pad_mass_kg))
+            .filter_map(|p| p.obstacle.law().explicit_body_limit_s(self.pad_mass_kg))
             .fold(f64::INFINITY, f64::min);
         Some(format!(
             "rapier integrates the pad body on its spring-damper explicitly, stable only below {limit:.3e} s: use \

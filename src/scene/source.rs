@@ -1,7 +1,8 @@
 //! The one interface between the arm's step and whatever it touches.
 //!
-//! A [`ContactSource`] is anything that puts loads on the arm: pads found by a contact query
-//! (`compliant`), pads that are rapier bodies (`rapier`), a friction clamp. The scene's step calls
+//! A [`ContactSource`] is anything that puts loads on the arm: contact pairs found by rapier's
+//! collision pipeline or one point per pad (`compliant`), pads that are rapier bodies (`rapier`),
+//! a friction clamp. The scene's step calls
 //! every source in the same named stages, in the spirit of MuJoCo's forward pass:
 //!
 //! 1. [`pose`](ContactSource::pose) its shapes from the arm's state at the start of the step;
@@ -13,13 +14,12 @@
 //! 5. [`advance`](ContactSource::advance) its own bodies to the arm's new pose;
 //! 6. [`measure`](ContactSource::measure) its forces at the end of the step.
 //!
-//! A new source (more pads, rig structure, the string) implements the trait and is added to the
-//! scene's list; the step does not change.
+//! A new source implements the trait and is added to the scene's list; the step does not change.
 
 use std::any::Any;
 
 use super::geometry::ArmView;
-use super::pads::Pad;
+use super::pair::ContactPair;
 use crate::arm::{ArmContact, GeneralizedLoad};
 
 /// Something that puts loads on the arm, called by the scene's step in stages (module doc).
@@ -41,8 +41,8 @@ pub trait ContactSource {
     /// appended in stage 3, evaluated by the step.
     fn measure(&mut self, arm: &ArmView, contacts: &[ArmContact]);
 
-    /// The pads this source holds, with their forces at the end of the last step.
-    fn pads(&self) -> &[Pad] {
+    /// The contact pairs this source holds, with their forces at the end of the last step.
+    fn pairs(&self) -> &[ContactPair] {
         &[]
     }
 
