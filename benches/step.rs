@@ -13,7 +13,7 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use pipearm::arm::{ArmSimulation, Fidelity};
 use pipearm::contact::ForceLaw;
 use pipearm::integrate::IntegratorKind;
-use pipearm::model::{ContactMethod, Model};
+use pipearm::model::{ContactMethod, Detection, Model};
 use pipearm::scenario::Scenario;
 use pipearm::scene::Scene;
 
@@ -56,8 +56,8 @@ fn arm_step(c: &mut Criterion) {
 }
 
 /// One step of the whole scene with the arm at its stop, 0.2 mm from its pad: compliant at each
-/// fidelity (the contact queries run only on steps whose motion could close the gap), and the
-/// rapier method (rapier's whole pipeline every step).
+/// fidelity on the pad-face path (the scene's `auto`), compliant through rapier's collision
+/// pipeline, and the rapier method (a rapier step every step).
 fn scene_step(c: &mut Criterion) {
     let mut group = c.benchmark_group("scene_step_at_the_stop");
     let base = default_scenario();
@@ -65,6 +65,9 @@ fn scene_step(c: &mut Criterion) {
         .into_iter()
         .map(|f| (format!("compliant {f}"), base.clone(), f))
         .collect();
+    let mut pipeline = base.clone();
+    pipeline.contact.detection = Detection::Pipeline;
+    cases.push(("compliant modal(3) pipeline".into(), pipeline, Fidelity::Modal { modes: 3 }));
     let mut rapier = base.clone();
     rapier.contact.method = ContactMethod::Rapier;
     rapier.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.0e3 };
@@ -96,6 +99,21 @@ fn default_run(c: &mut Criterion) {
     });
     group.finish();
     std::fs::remove_dir_all(&out).ok();
+}
+
+/// The default run (without recording) with its contacts found by rapier's collision pipeline
+/// against the pad-face path `auto` picks for it: the pipeline's price, timed in one run.
+fn detection_run(c: &mut Criterion) {
+    use pipearm::run::{RunOptions, run_with};
+    let mut group = c.benchmark_group("detection_run");
+    group.sample_size(40);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    for detection in [Detection::PadFace, Detection::Pipeline] {
+        let mut model = Scenario::load(&path).unwrap().model;
+        model.contact.detection = detection;
+        group.bench_function(detection.name(), |b| b.iter(|| run_with(&model, &RunOptions::default()).unwrap()));
+    }
+    group.finish();
 }
 
 /// The actuated scenes against their ideal twins (the same file without its `[actuator]` table),
@@ -161,5 +179,5 @@ fn run_and_record(scenario: &Scenario, out: &Path) {
     write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
 }
 
-criterion_group!(benches, arm_step, scene_step, default_run, actuated_run, string_run);
+criterion_group!(benches, arm_step, scene_step, default_run, detection_run, actuated_run, string_run);
 criterion_main!(benches);

@@ -267,7 +267,7 @@ impl Scenario {
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
         let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
         let names: Vec<&str> = spec.dampeners.iter().map(|d| d.name.as_str()).collect();
-        let structures = check.structures(&spec.structures, &names)?;
+        let structures = check.structures(&spec.structures, &names, &spec.contact)?;
         let mut model = Model {
             name: spec.name.clone(),
             robot,

@@ -379,6 +379,15 @@ fn a_bad_structure_is_named() {
     // A law without its parameters.
     let e = refused_run("structure-law", with(guide(boxed, clear, "{ kind = \"linear\", stiffness_n_m = 1e7 }")), same);
     assert!(e.contains("law = ") && e.contains("missing field `damping_n_s_m`"), "{e}");
+    // Structures with the rapier method, or with the pad-face path.
+    let with_method = |line: &'static str| {
+        let structure = guide(boxed, clear, law);
+        move |t: String| t.replace("method = \"compliant\"", line) + &structure
+    };
+    let e = refused_run("structure-rapier", with_method("method = \"rapier\""), same);
+    assert!(e.contains("key `contact.method`") && e.contains("[[structures]]"), "{e}");
+    let e = refused_run("structure-pad-face", with_method("method = \"compliant\"\ndetection = \"pad-face\""), same);
+    assert!(e.contains("key `contact.detection`") && e.contains("[[structures]]"), "{e}");
     // A negative size.
     let e =
         refused_run("structure-size", with(guide("{ kind = \"box\", size_m = [0.2, -0.6, 0.3] }", clear, law)), same);

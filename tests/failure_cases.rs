@@ -150,24 +150,21 @@ fn the_guard_stops_a_diverging_run_and_its_advice_is_a_step_that_works() {
     assert!(advice.contains("generalized-alpha"), "{advice}");
 }
 
+/// The `rapier` method hands the pad body's inertia to the arm one step late: stable while the
+/// pad is light against the arm's effective mass at the pad. A 10 t pad body is not; the guard
+/// stops it and the advice names the pad's mass; the scene's 1 kg pad runs at the same step
+/// (which the pad body on an explicit spring force could not: its limit there was 82 µs).
 #[test]
-fn the_rapier_pad_body_past_its_explicit_limit_is_stopped_and_the_advice_names_the_limit() {
+fn a_rapier_pad_body_far_heavier_than_the_arm_is_stopped_and_the_advice_names_its_mass() {
     let mut s = scenario("default");
     s.contact.method = ContactMethod::Rapier;
-    // The shipped pad's law made linear with the damping of its restitution on the arm (what
-    // `pipearm bench` runs): the pad body's explicit limit is 82 µs.
-    let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.4e4 };
-    s.dampeners[0].law = law;
-    s.time.settle_s = 0.5;
-    let limit = law.explicit_body_limit_s(s.contact.pad_mass_kg).unwrap();
-    assert!((limit - 8.2e-5).abs() < 1e-6, "{limit}");
-    s.time.step_s = 1e-3;
-    let Err(SceneError::Diverged { what, advice, .. }) = run(&s, None) else { panic!("1 ms is 12 times the limit") };
-    println!("1 ms: {what}; {advice}");
-    assert!(what.contains("compressed") || what.contains("energy"), "{what}");
-    assert!(advice.contains("compliant") && advice.contains(&format!("{limit:.3e}")), "{advice}");
-    // The remedy the advice names: below the limit it runs.
-    s.time.step_s = 0.75 * limit;
-    let (summary, _) = run(&s, None).expect("below the pad body's limit");
+    s.dampeners[0].law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: 2.4e4 };
+    s.time.settle_s = 2.0;
+    s.contact.pad_mass_kg = 1.0e4;
+    let Err(SceneError::Diverged { what, advice, .. }) = run(&s, None) else { panic!("a 10 t pad body must diverge") };
+    println!("10 t pad: {what}; {advice}");
+    assert!(advice.contains("pad_mass_kg") && advice.contains("compliant"), "{advice}");
+    s.contact.pad_mass_kg = 1.0;
+    let (summary, _) = run(&s, None).expect("the scene's 1 kg pad at the scene's step");
     assert!(summary.pairs[0].peak_force_n > 0.0);
 }

@@ -21,7 +21,7 @@ pub use report::{points_csv, report_markdown, stability_csv};
 use crate::arm::Fidelity;
 use crate::contact::ForceLaw;
 use crate::integrate::IntegratorKind;
-use crate::model::{Clamp, ContactMethod, DEFAULT_TOLERANCE_M, Model};
+use crate::model::{Clamp, ContactMethod, DEFAULT_TOLERANCE_M, Detection, Model};
 use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::scene::{Scene, SceneError};
 
@@ -59,6 +59,10 @@ pub struct Variant {
     pub tolerance_m: Option<f64>,
     /// Contact method.
     pub contact: ContactMethod,
+    /// Where the `compliant` method finds its contacts.
+    pub detection: Detection,
+    /// The `rapier` method's pad body mass, kg (`None`: the scene's).
+    pub pad_mass_kg: Option<f64>,
     /// Pad law made linear (the `rapier` method needs one; its compliant twin shares it).
     pub linear_pads: bool,
     /// How the string is held.
@@ -83,6 +87,12 @@ impl Variant {
         }
         if self.linear_pads {
             label += &format!(" {}", format!("{:?}", self.contact).to_lowercase());
+        }
+        if self.detection != Detection::Auto {
+            label += &format!(" {}", self.detection.name());
+        }
+        if let Some(mass) = self.pad_mass_kg {
+            label += &format!(" pad {mass}kg");
         }
         if self.clamp == Clamp::Friction {
             label += " friction";
@@ -109,6 +119,10 @@ impl Variant {
         s.time.free_step_s = self.free_step_s;
         s.time.tolerance_m = self.tolerance_m;
         s.contact.method = self.contact;
+        s.contact.detection = self.detection;
+        if let Some(mass) = self.pad_mass_kg {
+            s.contact.pad_mass_kg = mass;
+        }
         if let Some(held) = s.payload.string_mut() {
             held.clamp = self.clamp;
             if self.string.is_some() {
@@ -256,6 +270,8 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
         free_step_s: None,
         tolerance_m: None,
         contact: ContactMethod::Compliant,
+        detection: model.contact.detection,
+        pad_mass_kg: None,
         linear_pads: false,
         clamp: base_clamp.unwrap_or_default(),
         string: None,
@@ -298,19 +314,31 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
         let coarse = steps.iter().filter(|&&h| fidelity != Fidelity::Fe || h >= 0.5 * h0);
         out.extend(coarse.map(|&step_s| Variant { axis: axis.clone(), fidelity, step_s, ..implicit.clone() }));
     }
-    if !model.dampeners.is_empty() {
-        // rapier's pad body is explicit: it needs steps well below the scene's (stability map).
-        let fine = [h0 / 32.0, h0 / 16.0];
+    if !model.dampeners.is_empty() && model.structures.is_empty() {
         for contact in [ContactMethod::Compliant, ContactMethod::Rapier] {
-            let axis = format!("contact: {}", format!("{contact:?}").to_lowercase());
-            let extra = if contact == ContactMethod::Rapier && !quick { &fine[..] } else { &[] };
-            out.extend(extra.iter().chain(&steps).map(|&step_s| Variant {
+            let axis = format!("contact: {}", contact.name());
+            out.extend(steps.iter().map(|&step_s| Variant {
                 axis: axis.clone(),
                 contact,
                 linear_pads: true,
                 step_s,
                 ..base.clone()
             }));
+        }
+        // The `rapier` pad body's mass at the scene's step: its difference from `compliant`
+        // shrinks with the mass.
+        let masses: &[f64] = if quick { &[0.1, 1.0, 10.0] } else { &[0.01, 0.1, 1.0, 10.0, 100.0] };
+        out.extend(masses.iter().map(|&mass| Variant {
+            axis: "pad mass".into(),
+            contact: ContactMethod::Rapier,
+            pad_mass_kg: Some(mass),
+            linear_pads: true,
+            ..base.clone()
+        }));
+        // Contact through rapier's pipeline against the pad-face path, at the scene's steps.
+        for detection in [Detection::Pipeline, Detection::PadFace] {
+            let axis = format!("detection: {}", detection.name());
+            out.extend(steps.iter().map(|&step_s| Variant { axis: axis.clone(), detection, step_s, ..base.clone() }));
         }
     }
     if base_clamp == Some(Clamp::Rigid) {

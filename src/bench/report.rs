@@ -167,25 +167,45 @@ pub fn report_markdown(result: &BenchResult, command: &str) -> String {
     out
 }
 
-/// The `rapier` contact method as the step grows (from the grid's contact axis), beside the pad
-/// spring's explicit limit.
+/// The `rapier` contact method as the step and the pad body's mass grow, and the pipeline
+/// against the pad-face path (from the grid's contact, pad mass and detection axes).
 fn rapier_markdown(result: &BenchResult) -> String {
-    let rapier: Vec<&super::Point> = result.points.iter().filter(|p| p.variant.axis == "contact: rapier").collect();
-    if rapier.is_empty() {
-        return String::new();
+    let on = |axis: &str| result.points.iter().filter(|p| p.variant.axis == axis).collect::<Vec<_>>();
+    let row = |p: &super::Point| match &p.outcome {
+        Outcome::Ran(m) => {
+            format!("ran | {:.1} | {:.1e} | {:.3}", m.peak_force_n, m.peak_force_error, m.cost_s_per_s)
+        }
+        Outcome::Diverged { t_s, .. } => format!("diverged at {t_s:.4} s | — | — | —"),
+    };
+    let mut out = String::new();
+    let header = "| outcome | peak force (N) | peak error vs reference | cost (s/s) |\n|---|---|---|---|---|\n";
+    let rapier = on("contact: rapier");
+    if !rapier.is_empty() {
+        out += "\n### The `rapier` contact method as the step grows\n\nThe pad body (the scene's mass) on its spring as \
+                a joint motor in rapier's solver, the spring's law in the arm step, the body's inertia handed over \
+                one step late. Against the compliant reference on the same linear law.\n\n| step ";
+        out += header;
+        for p in rapier {
+            let _ = writeln!(out, "| {} | {} |", ms(p.variant.step_s), row(p));
+        }
     }
-    let limit = result.stability.contact.iter().map(|c| c.pad_spring_limit_s).fold(f64::INFINITY, f64::min);
-    let mut out = format!(
-        "\n### The `rapier` contact method as the step grows\n\nThe pad body on its spring–damper (the linear law \
-         of the compliant twin), integrated explicitly by rapier: stable below (2/ω)(√(1 + ζ²) − ζ) = {}.\n\n| step | outcome | peak force (N) | peak error vs compliant reference |\n|---|---|---|---|\n",
-        ms(limit)
-    );
-    for p in rapier {
-        let row = match &p.outcome {
-            Outcome::Ran(m) => format!("ran | {:.1} | {:.1e}", m.peak_force_n, m.peak_force_error),
-            Outcome::Diverged { t_s, .. } => format!("diverged at {t_s:.4} s | — | —"),
-        };
-        let _ = writeln!(out, "| {} | {row} |", ms(p.variant.step_s));
+    let masses = on("pad mass");
+    if !masses.is_empty() {
+        out += "\n### The `rapier` contact method against the pad body's mass, at the scene's step\n\n| pad mass (kg) ";
+        out += header;
+        for p in masses {
+            let _ = writeln!(out, "| {} | {} |", p.variant.pad_mass_kg.unwrap_or(f64::NAN), row(p));
+        }
+    }
+    for axis in ["detection: pipeline", "detection: pad-face"] {
+        let points = on(axis);
+        if !points.is_empty() {
+            let _ = write!(out, "\n### Contact found by `{}`\n\n| step ", &axis["detection: ".len()..]);
+            out += header;
+            for p in points {
+                let _ = writeln!(out, "| {} | {} |", ms(p.variant.step_s), row(p));
+            }
+        }
     }
     out
 }
@@ -241,16 +261,16 @@ fn stability_markdown(map: &StabilityMap) -> String {
         );
     }
     if !map.contact.is_empty() {
-        out += "\n| pad | m_eff (kg) | k at the reference peak (N/m) | penalty limit 2√(m_eff/k) | rapier pad body limit (2/ω)(√(1+ζ²) − ζ) |\n|---|---|---|---|---|\n";
+        out +=
+            "\n| pad | m_eff (kg) | k at the reference peak (N/m) | penalty limit 2√(m_eff/k) |\n|---|---|---|---|\n";
         for c in &map.contact {
             let _ = writeln!(
                 out,
-                "| {} | {:.2} | {:.3e} | {} | {} |",
+                "| {} | {:.2} | {:.3e} | {} |",
                 c.pad,
                 c.effective_mass_kg,
                 c.stiffness_n_m,
-                ms(c.penalty_limit_s),
-                ms(c.pad_spring_limit_s)
+                ms(c.penalty_limit_s)
             );
         }
     }
@@ -260,6 +280,19 @@ fn stability_markdown(map: &StabilityMap) -> String {
             let _ =
                 writeln!(out, "| {} | {} | {} |", s.what, describe(&s.measured), s.predicted_s.map_or("—".into(), ms));
         }
+    }
+    if let Some(row) = &map.pad_mass {
+        let heaviest = match row.heaviest_pad {
+            Limit::Step(kg) => format!("{kg:.0} kg"),
+            Limit::Unconditional(kg) => format!("every mass up to {kg:.0} kg"),
+            Limit::Never(kg) => format!("none from {kg:.0} kg"),
+        };
+        let _ = write!(
+            out,
+            "\nThe `rapier` method's heaviest pad body at the scene's step: {heaviest}, against the arm's effective \
+             mass of {:.1} kg at the pad (it hands the pad's inertia to the arm one step late).\n",
+            row.effective_mass_kg
+        );
     }
     out
 }

@@ -1,6 +1,9 @@
 //! The stability map: the largest stable step of each integrator on each arm model, found by
-//! bisection and set beside the theory (`../shared/reference/integrators.md`); the pad contacts'
-//! penalty limit; the largest step the friction clamp's coupling and the rapier contact survive.
+//! bisection and set beside the theory (Hairer & Wanner's stability intervals: explicit Euler
+//! none, symplectic Euler and the central difference ω h < 2, RK4 ω h < 2.83, Newmark's average
+//! acceleration and generalized-α unconditional); the pad contacts' penalty limit; the largest
+//! step the friction clamp's coupling and the `rapier` method survive, and the heaviest pad body
+//! the `rapier` method's coupling carries at the scene's step.
 //!
 //! An arm run is unstable when its vibration energy grows without a source: the arm, undamped,
 //! is held still at the horizontal, started from its static sag with every mode moving, and
@@ -17,7 +20,7 @@ use crate::beam::BeamModel;
 use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
-use crate::model::{Clamp, Model};
+use crate::model::{Clamp, ContactMethod, Model};
 use crate::robot::{PipeString, StringSpec};
 use crate::run::{RunOptions, run_with};
 use crate::scene::{Scene, SceneError};
@@ -64,10 +67,16 @@ pub struct ContactRow {
     pub stiffness_n_m: f64,
     /// 2√(m_eff/k), s.
     pub penalty_limit_s: f64,
-    /// The `rapier` method's pad body on its spring–damper (linear law k, c; pad mass m), whose
-    /// force rapier integrates explicitly (symplectic Euler): stable only below
-    /// (2/ω)(√(1 + ζ²) − ζ), ω = √(k/m), ζ = c / (2√(km)), s.
-    pub pad_spring_limit_s: f64,
+}
+
+/// The heaviest pad body the `rapier` method's coupling carries at the scene's step (it hands
+/// the pad's inertia to the arm one step late: an added mass against the arm's effective mass).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PadMassRow {
+    /// The arm's effective mass at the lightest-loaded pad, kg.
+    pub effective_mass_kg: f64,
+    /// The largest pad mass (kg, in the `Limit`'s value) at which the scene runs to its end.
+    pub heaviest_pad: Limit,
 }
 
 /// The largest stable step of a whole scene run, for one setting.
@@ -88,8 +97,10 @@ pub struct StabilityMap {
     pub arm: Vec<ArmRow>,
     /// Pads.
     pub contact: Vec<ContactRow>,
-    /// Scene runs bisected: explicit integration of the pad contact.
+    /// Scene runs bisected: explicit integration of the pad contact, the `rapier` method.
     pub scene: Vec<SceneRow>,
+    /// The `rapier` method's heaviest pad body (scenes with pads).
+    pub pad_mass: Option<PadMassRow>,
     /// The friction clamp over steps, strings and models.
     pub clamp: Vec<ClampRun>,
 }
@@ -233,14 +244,12 @@ pub fn map(
         .dampeners
         .iter()
         .zip(masses.into_iter().zip(penalties))
-        .zip(linear)
-        .filter_map(|((pad, (m, penalty)), linear)| {
+        .filter_map(|(pad, (m, penalty))| {
             Some(ContactRow {
                 pad: pad.name.clone(),
                 effective_mass_kg: m?,
                 stiffness_n_m: pad.law.tangent_stiffness_at_force(reference.peak_force_n),
                 penalty_limit_s: penalty?,
-                pad_spring_limit_s: linear.explicit_body_limit_s(model.contact.pad_mass_kg).unwrap_or(f64::NAN),
             })
         })
         .collect();
@@ -259,8 +268,42 @@ pub fn map(
             predicted_s: Some(predicted),
         });
     }
+    let mut pad_mass = None;
+    if !contact.is_empty() && model.structures.is_empty() {
+        let mut rapier = model.clone();
+        rapier.contact.method = ContactMethod::Rapier;
+        for (pad, law) in rapier.dampeners.iter_mut().zip(linear) {
+            pad.law = *law;
+        }
+        let iterations = if quick { 3 } else { 6 };
+        rows.push(SceneRow {
+            what: format!("rapier, {} kg pad, {auto}", rapier.contact.pad_mass_kg),
+            measured: scene_limit(&rapier, auto, 0.25 * h0, 8.0 * h0, iterations)?,
+            predicted_s: None,
+        });
+        let effective_mass_kg = contact.iter().map(|c| c.effective_mass_kg).fold(f64::INFINITY, f64::min);
+        pad_mass = Some(PadMassRow { effective_mass_kg, heaviest_pad: heaviest_pad(&rapier, auto, iterations)? });
+    }
     let clamp = clamp_sweep(model, auto, quick)?;
-    Ok(StabilityMap { arm, contact, scene: rows, clamp })
+    Ok(StabilityMap { arm, contact, scene: rows, pad_mass, clamp })
+}
+
+/// The largest pad body mass (kg) at which the `rapier` scene runs to its end at its step.
+fn heaviest_pad(model: &Model, fidelity: Fidelity, iterations: usize) -> Result<Limit, SceneError> {
+    let mut error = None;
+    let limit = bisect(1.0, 1e5, iterations, |mass| {
+        let mut s = model.clone();
+        s.contact.pad_mass_kg = mass;
+        match run_with(&s, &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() }) {
+            Ok(_) => true,
+            Err(SceneError::Diverged { .. }) => false,
+            Err(e) => {
+                error.get_or_insert(e);
+                false
+            }
+        }
+    });
+    error.map_or(Ok(limit), Err)
 }
 
 /// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings over a range of
@@ -353,31 +396,6 @@ fn dedup(mut v: Vec<Fidelity>) -> Vec<Fidelity> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Symplectic Euler on m ẍ = −k x − c ẋ (rapier's explicit force), |x| after many steps.
-    fn amplitude_after(law: &ForceLaw, mass_kg: f64, h: f64) -> f64 {
-        let ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: c } = *law else { unreachable!() };
-        let (mut x, mut v) = (1.0_f64, 0.0_f64);
-        for _ in 0..20_000 {
-            v += h * (-k * x - c * v) / mass_kg;
-            x += h * v;
-        }
-        let amplitude = x.abs().max(v.abs() * h);
-        if amplitude.is_finite() { amplitude } else { f64::INFINITY }
-    }
-
-    #[test]
-    fn the_pad_body_limit_is_where_symplectic_euler_on_a_damped_spring_turns_unstable() {
-        for c in [0.0, 2.0e3, 2.4e4] {
-            let law = ForceLaw::Linear { stiffness_n_m: 7.5e6, damping_n_s_m: c };
-            let limit = law.explicit_body_limit_s(1.0).unwrap();
-            assert!(amplitude_after(&law, 1.0, 0.99 * limit) < 10.0, "c = {c}: unstable below {limit}");
-            assert!(amplitude_after(&law, 1.0, 1.01 * limit) > 1e3, "c = {c}: stable above {limit}");
-        }
-        // Undamped, it is the textbook 2/ω.
-        let undamped = ForceLaw::Linear { stiffness_n_m: 4.0, damping_n_s_m: 0.0 }.explicit_body_limit_s(1.0).unwrap();
-        assert!((undamped - 1.0).abs() < 1e-12);
-    }
 
     #[test]
     fn bisection_finds_a_known_threshold() {

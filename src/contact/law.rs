@@ -82,16 +82,6 @@ impl ForceLaw {
         k * n * depth_m.powf(n - 1.0)
     }
 
-    /// The explicit (symplectic Euler) stability limit of a body of `mass_kg` on this law when
-    /// it is linear, s: the Jury conditions on λ² − (2 − 2ζωh − ω²h²)λ + (1 − 2ζωh) give
-    /// ωh < 2(√(1 + ζ²) − ζ), ω = √(k/m), ζ = c / (2√(km)). `None` for the nonlinear laws.
-    pub fn explicit_body_limit_s(&self, mass_kg: f64) -> Option<f64> {
-        let ForceLaw::Linear { stiffness_n_m: k, damping_n_s_m: c } = *self else { return None };
-        let omega = (k / mass_kg).sqrt();
-        let zeta = c / (2.0 * (k * mass_kg).sqrt());
-        Some(2.0 / omega * ((1.0 + zeta * zeta).sqrt() - zeta))
-    }
-
     /// The coefficient of restitution the law is set for, if it is one of the restitution-based
     /// laws.
     pub fn restitution(&self) -> Option<f64> {

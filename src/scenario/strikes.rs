@@ -18,7 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Check, ScenarioError};
 use crate::contact::ForceLaw;
-use crate::model::{ContactMethod, Dampener, Face, Model, Structure, StructureShape};
+use crate::model::{ContactMethod, ContactOptions, Dampener, Detection, Face, Model, Structure, StructureShape};
 use crate::robot::Robot;
 
 use super::ScenarioSpec;
@@ -136,7 +136,16 @@ impl Check<'_> {
         &self,
         specs: &[StructureSpec],
         dampener_names: &[&str],
+        contact: &ContactOptions,
     ) -> Result<Vec<Structure>, ScenarioError> {
+        if !specs.is_empty() && contact.method == ContactMethod::Rapier {
+            let message = "the rapier method models pads only: allowed \"compliant\" with [[structures]]";
+            return Err(self.invalid("contact.method", message));
+        }
+        if !specs.is_empty() && contact.detection == Detection::PadFace {
+            let message = "pad-face sees pads only: allowed \"pipeline\" or \"auto\" with [[structures]]";
+            return Err(self.invalid("contact.detection", message));
+        }
         let mut structures: Vec<Structure> = Vec::with_capacity(specs.len());
         for (i, spec) in specs.iter().enumerate() {
             let key = |k: &str| format!("structures[{i}].{k}");

@@ -1,14 +1,24 @@
-//! `contact.method = "rapier"`: each pad is a rapier body on a linear spring–damper mount, and
-//! rapier's constraint solver resolves its contact with the arm's shapes (kinematic bodies posed
-//! from the arm's state). The contact impulse / dt of one rapier step is handed to the arm as a
-//! load over the next step: staggered, and rapier integrates the pad body explicitly, so the
-//! method is stable only below [`ForceLaw::explicit_body_limit_s`] of the pad's law and mass.
+//! `contact.method = "rapier"`: each pad is a rapier body of its own mass on its spring, struck
+//! by the arm's shapes (kinematic bodies posed from the arm's state) in rapier's world.
+//!
+//! Coupled so that it is stable at the scene's own step:
+//! - the pad's spring is a force-based prismatic joint motor to its mount, inside rapier's
+//!   constraint solver (implicit: stable at any step, where a spring force applied to the body
+//!   diverges above 2√(m/k));
+//! - the arm step evaluates the spring's law itself, at the arm's penetration of the pad's rest
+//!   face (the pad-face points of `compliant`, implicit in the arm step);
+//! - what rapier's contact force adds to that law — the pad body's inertia, its lifting off a
+//!   retreating arm — is handed to the arm over the next step. Only that correction is staggered:
+//!   it scales with the pad's mass, so the method tends to `compliant` as the mass goes to zero,
+//!   and it is stable while the pad is light against the arm's effective mass at the pad (the
+//!   added-mass ratio; docs/accuracy.md maps where it fails).
 
 use std::any::Any;
 
 use rapier3d_f64::prelude::*;
 
 use super::geometry::ArmView;
+use super::pad_faces::PadFaces;
 use super::pair::{ContactPair, PointReading};
 use super::source::ContactSource;
 use crate::arm::{ArmContact, GeneralizedLoad};
@@ -23,8 +33,7 @@ const PAD_GROUPS: InteractionGroups = InteractionGroups::new(Group::GROUP_2, Gro
 const PAD_CONTACT_TYPES: ActiveCollisionTypes = ActiveCollisionTypes::DYNAMIC_KINEMATIC;
 
 /// The spring of a pad the `rapier` method can model, (stiffness N/m, damping N·s/m): its law
-/// must be linear, and its face normal along a world axis (rapier locks translations in world
-/// axes). The error names the dampener's key and what is allowed.
+/// must be linear. The error names the dampener's key and what is allowed.
 pub fn rapier_pad_spring(dampener: &Dampener) -> Result<(f64, f64), (&'static str, String)> {
     let ForceLaw::Linear { stiffness_n_m, damping_n_s_m } = dampener.law else {
         return Err((
@@ -32,36 +41,35 @@ pub fn rapier_pad_spring(dampener: &Dampener) -> Result<(f64, f64), (&'static st
             "contact.method = \"rapier\" models the pad as a linear spring: allowed law kind = \"linear\"".into(),
         ));
     };
-    let (s, c) = dampener.angle_rad.sin_cos();
-    if s.abs() < 1.0 - 1e-9 && c.abs() < 1.0 - 1e-9 {
-        return Err((
-            "angle_deg",
-            "contact.method = \"rapier\" needs a pad facing a world axis: allowed angle_deg 0, ±90, 180".into(),
-        ));
-    }
     Ok((stiffness_n_m, damping_n_s_m))
 }
 
-/// A pad body's linear spring–damper to its rest position.
-#[derive(Debug, Clone, Copy)]
-struct PadSpring {
-    rest_m: [f64; 3],
-    stiffness_n_m: f64,
-    damping_n_s_m: f64,
-}
-
-/// Pads as rapier bodies on springs, struck by the arm's shapes in rapier's world.
+/// Pads as rapier bodies on sprung mounts, struck by the arm's shapes in rapier's world.
 pub struct RapierPads {
     world: PhysicsWorld,
+    /// The pads as the arm step sees them: their spring laws at the arm's penetration.
+    springs: PadFaces,
+    /// The pads as rapier resolves them: the contact force on each pad body.
     pads: Vec<ContactPair>,
-    /// Per pad: its body, collider and mount.
-    bodies: Vec<(RigidBodyHandle, ColliderHandle, PadSpring)>,
+    /// Per pad, its body on its mount.
+    bodies: Vec<PadBody>,
     /// Per arm piece (the scene's order): its kinematic body and collider.
     pieces: Vec<(RigidBodyHandle, ColliderHandle)>,
     pad_mass_kg: f64,
-    /// Per pad, the forces measured by the last rapier step: (station, force world X/Y).
+    /// Per pad, rapier's contact force less the spring law's at the end of the last step, handed
+    /// to the arm over the next: (station, force world X/Y).
     handed_over: Vec<(f64, [f64; 2])>,
     last_step_s: f64,
+}
+
+/// A pad's rapier body and its spring.
+struct PadBody {
+    body: RigidBodyHandle,
+    collider: ColliderHandle,
+    stiffness_n_m: f64,
+    damping_n_s_m: f64,
+    /// Its travel's rate at the end of the last step, m/s.
+    rate_m_s: f64,
 }
 
 /// Why a pad cannot be a rapier body.
@@ -76,6 +84,24 @@ pub struct UnsupportedPad {
     pub message: String,
 }
 
+/// Natural frequency of rapier's soft contact constraint, Hz: at 10 kHz a 1 kg pad body lags the
+/// arm's face by F / (m ω²) ≈ 0.2 µm at 800 N (at rapier's default 30 Hz it would lag by 20 mm).
+const CONTACT_HZ: f64 = 1.0e6;
+
+/// rapier's contact resolution: stiff enough that the pad body follows the arm's face to well
+/// within a pad's compression (tens of micrometres), where rapier's defaults (30 Hz softness,
+/// millimetres of allowed error) are tuned for games.
+fn contact_parameters(world: &mut PhysicsWorld, step_s: f64) {
+    let p = &mut world.integration_parameters;
+    p.dt = step_s;
+    p.length_unit = 1.0;
+    p.normalized_allowed_linear_error = 1e-7;
+    p.normalized_prediction_distance = 2e-3;
+    let softness = SpringCoefficients::new(CONTACT_HZ, 10.0);
+    p.contact_softness = softness;
+    p.static_contact_softness = softness;
+}
+
 impl RapierPads {
     /// rapier's world of the arm's shapes (posed from `arm`) and the pads on their mounts.
     pub fn new(
@@ -87,7 +113,7 @@ impl RapierPads {
     ) -> Result<Self, UnsupportedPad> {
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -gravity_m_s2, 0.0);
-        world.integration_parameters.dt = step_s;
+        contact_parameters(&mut world, step_s);
         let pieces = arm
             .pieces
             .iter()
@@ -109,25 +135,36 @@ impl RapierPads {
             })?;
             let (stiffness_n_m, damping_n_s_m) = rapier_pad_spring(dampener)
                 .map_err(|(key, message)| UnsupportedPad { name: dampener.name.clone(), key, message })?;
-            let t = pad.pose.translation;
-            let spring = PadSpring { rest_m: [t.x, t.y, t.z], stiffness_n_m, damping_n_s_m };
-            // The pad slides along its normal only.
-            let along_x = pad.normal_world[0].abs() > 1.0 - 1e-9;
-            let builder = RigidBodyBuilder::dynamic()
-                .gravity_scale(0.0)
-                .can_sleep(false)
-                .lock_rotations()
-                .enabled_translations(along_x, !along_x, false)
-                .pose(pad.pose);
-            let body = world.insert_body(builder);
+            let mount = world.insert_body(RigidBodyBuilder::fixed().pose(pad.pose));
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic().gravity_scale(0.0).can_sleep(false).lock_rotations().pose(pad.pose),
+            );
             let collider = ColliderBuilder::new(pad.shape.clone())
                 .active_collision_types(PAD_CONTACT_TYPES)
                 .collision_groups(PAD_GROUPS)
                 .friction(0.0)
                 .mass(pad_mass_kg);
-            bodies.push((body, world.insert_collider(collider, Some(body)), spring));
+            let collider = world.insert_collider(collider, Some(body));
+            // The pad slides along its face normal, its own y axis, on a spring to its rest place.
+            let spring = PrismaticJointBuilder::new(Vector::Y).motor_model(MotorModel::ForceBased).motor_position(
+                0.0,
+                stiffness_n_m,
+                damping_n_s_m,
+            );
+            world.insert_impulse_joint(mount, body, spring);
+            bodies.push(PadBody { body, collider, stiffness_n_m, damping_n_s_m, rate_m_s: 0.0 });
         }
-        Ok(RapierPads { world, pads, bodies, pieces, pad_mass_kg, handed_over: Vec::new(), last_step_s: step_s })
+        let springs = PadFaces::new(pads.clone());
+        Ok(RapierPads {
+            world,
+            springs,
+            pads,
+            bodies,
+            pieces,
+            pad_mass_kg,
+            handed_over: Vec::new(),
+            last_step_s: step_s,
+        })
     }
 
     /// Moves the arm's shapes that can reach a pad to their poses now (`next`: as the kinematic
@@ -145,16 +182,38 @@ impl RapierPads {
         }
     }
 
-    /// Spring–damper force of each pad's mount, held over the rapier step.
-    fn apply_pad_springs(&mut self) {
-        for &(handle, _, spring) in &self.bodies {
-            let Some(body) = self.world.bodies.get_mut(handle) else { continue };
-            let x = body.translation();
-            let v = body.linvel();
-            let rest = Vector::new(spring.rest_m[0], spring.rest_m[1], spring.rest_m[2]);
-            let force = -(x - rest) * spring.stiffness_n_m - v * spring.damping_n_s_m;
-            body.reset_forces(false);
-            body.add_force(force, true);
+    /// Each pad's force on the arm at the end of the last step, into `pads`: while rapier holds
+    /// the pad body in contact with an arm shape, what its mount and its inertia take,
+    /// k x + c ẋ + m ẍ (x its travel); 0 once it has lifted off.
+    fn measure_rapier(&mut self, arm: &ArmView) {
+        let rest = self.springs.pairs().iter().map(|p| p.pose);
+        for ((pad, mount), rest) in self.pads.iter_mut().zip(&mut self.bodies).zip(rest) {
+            pad.clear_measurement();
+            pad.touching = None;
+            let Some(body) = self.world.bodies.get(mount.body) else { continue };
+            let n = Vector::new(pad.normal_world[0], pad.normal_world[1], 0.0);
+            let travel_m = (rest.translation - body.translation()).dot(n);
+            let rate_m_s = -body.linvel().dot(n);
+            let accel_m_s2 = (rate_m_s - mount.rate_m_s) / self.last_step_s;
+            mount.rate_m_s = rate_m_s;
+            pad.compression_m = travel_m.max(0.0);
+            pad.pose = *body.position();
+            let touching = arm.pieces.iter().zip(&self.pieces).find_map(|(piece, &(_, piece_collider))| {
+                let pair = self.world.narrow_phase.contact_pair(piece_collider, mount.collider)?;
+                (pair.total_impulse().length() > 0.0).then_some((piece, piece_collider))
+            });
+            let Some((piece, piece_collider)) = touching else { continue };
+            let force = mount.stiffness_n_m * travel_m + mount.damping_n_s_m * rate_m_s + self.pad_mass_kg * accel_m_s2;
+            let force = force.max(0.0);
+            // The force acts on the arm's section at the pad's station, on the arm's face.
+            let arm_collider = &self.world.colliders[piece_collider];
+            let face = rest.translation - n * (pad.dampener().map_or(0.0, |d| 0.5 * d.thickness_m) - travel_m);
+            let (station, _) = piece.station_of(arm_collider.position(), [face.x, face.y, face.z]);
+            pad.force_n = force;
+            pad.point_m = [face.x - arm.pivot_m[0], face.y - arm.pivot_m[1]];
+            pad.station_m = station;
+            pad.points.push(PointReading { point_m: [face.x, face.y, face.z], force_n: [force * n.x, force * n.y] });
+            pad.touching = Some(piece.name.clone());
         }
     }
 }
@@ -170,50 +229,29 @@ impl ContactSource for RapierPads {
         }
     }
 
+    fn find_contacts(&mut self, arm: &ArmView, h_s: f64, contacts: &mut Vec<ArmContact>) {
+        self.springs.find_contacts(arm, h_s, contacts);
+    }
+
     fn advance(&mut self, arm: &ArmView, h_s: f64) {
         self.pose_pieces(arm, true);
-        self.apply_pad_springs();
         self.world.integration_parameters.dt = h_s;
         self.world.step();
         self.last_step_s = h_s;
     }
 
-    /// Each pad's force from rapier's contact impulses over the last step.
-    fn measure(&mut self, arm: &ArmView, _contacts: &[ArmContact]) {
+    /// Each pad's force as rapier resolves it, and what it adds to the spring law the arm step
+    /// evaluated: the correction handed over next step.
+    fn measure(&mut self, arm: &ArmView, contacts: &[ArmContact]) {
+        self.springs.measure(arm, contacts);
+        self.measure_rapier(arm);
         self.handed_over.clear();
-        for (pad, &(handle, collider, spring)) in self.pads.iter_mut().zip(&self.bodies) {
-            pad.clear_measurement();
-            pad.touching = None;
-            if let Some(body) = self.world.bodies.get(handle) {
-                let travel = [0, 1].map(|k| spring.rest_m[k] - body.translation()[k]);
-                pad.compression_m = (travel[0] * pad.normal_world[0] + travel[1] * pad.normal_world[1]).max(0.0);
-                pad.pose = *body.position();
-            }
-            for (piece, &(_, piece_collider)) in arm.pieces.iter().zip(&self.pieces) {
-                let Some(pair) = self.world.narrow_phase.contact_pair(piece_collider, collider) else { continue };
-                let magnitude = pair.total_impulse().length();
-                if magnitude <= 0.0 {
-                    continue;
-                }
-                let force = magnitude / self.last_step_s;
-                let arm_collider = &self.world.colliders[piece_collider];
-                let point = pair
-                    .find_deepest_contact()
-                    .map(|(_, c)| {
-                        let local = if pair.collider1 == piece_collider { c.local_p1 } else { c.local_p2 };
-                        arm_collider.position() * local
-                    })
-                    .unwrap_or(arm_collider.translation());
-                // The force acts on the arm's section at the point's station.
-                let (station, _) = piece.station_of(arm_collider.position(), [point.x, point.y, point.z]);
-                pad.force_n += force;
-                pad.point_m = [point.x - arm.pivot_m[0], point.y - arm.pivot_m[1]];
-                pad.station_m = station;
-                let n = pad.normal_world;
-                pad.points
-                    .push(PointReading { point_m: [point.x, point.y, point.z], force_n: [force * n[0], force * n[1]] });
-                pad.touching = Some(piece.name.clone());
-                self.handed_over.push((station, [force * pad.normal_world[0], force * pad.normal_world[1]]));
+        for (rapier, spring) in self.pads.iter().zip(self.springs.pairs()) {
+            let extra = rapier.force_n - spring.force_n;
+            if extra != 0.0 {
+                let n = rapier.normal_world;
+                let station = rapier.dampener().map_or(0.0, |d| d.station_m);
+                self.handed_over.push((station, [extra * n[0], extra * n[1]]));
             }
         }
     }
@@ -231,15 +269,11 @@ impl ContactSource for RapierPads {
     }
 
     fn divergence_advice(&self, _step_s: f64) -> Option<String> {
-        let limit = self
-            .pads
-            .iter()
-            .filter_map(|p| p.obstacle.law().explicit_body_limit_s(self.pad_mass_kg))
-            .fold(f64::INFINITY, f64::min);
         Some(format!(
-            "rapier integrates the pad body on its spring-damper explicitly, stable only below {limit:.3e} s: use \
-             step_s <= {:.3e} s, a heavier pad body, or contact.method = \"compliant\"",
-            0.9 * limit
+            "the rapier method hands the pad body's inertia ({:.3} kg) to the arm one step late, stable while it is \
+             light against the arm's effective mass at the pad: use a lighter contact.pad_mass_kg, or \
+             contact.method = \"compliant\"",
+            self.pad_mass_kg
         ))
     }
 
