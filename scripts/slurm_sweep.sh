@@ -18,4 +18,4 @@ SHARDS=${SLURM_ARRAY_TASK_COUNT:?run as a job array: sbatch --array=0-N scripts/
   --vary drive.duration_s=10..25:5 \
   --vary 'payload.size=2-3/8,2-7/8,3-1/2,4-1/2' \
   --threads "${SLURM_CPUS_PER_TASK:-1}" \
-  --shards "$SHARDS" --out "$OUT"
+  --shard-count "$SHARDS" --out "$OUT"

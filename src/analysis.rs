@@ -33,6 +33,8 @@ pub struct Residual {
     /// Time after the drive stops until the signal stays within 5 % of its largest excursion
     /// about the final mean, s.
     pub settling_time_s: f64,
+    /// Whether it settled before the run's end (else `settling_time_s` is the whole window).
+    pub settled: bool,
 }
 
 /// Residual vibration of `series` (time, value) from `from_s` on.
@@ -45,6 +47,7 @@ pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
             log_decrement: f64::NAN,
             damping_ratio: f64::NAN,
             settling_time_s: 0.0,
+            settled: true,
         };
     }
     let (lo, hi) = tail.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
@@ -71,6 +74,7 @@ pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
         log_decrement,
         damping_ratio,
         settling_time_s: last_out - from_s,
+        settled: tail.last().is_some_and(|p| last_out < p.0),
     }
 }
 

@@ -19,6 +19,8 @@ use pipearm::run::{RunOptions, RunSummary, run, run_partial};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
+use cli::overrides::{Overrides, parse_fidelity};
+
 mod cli;
 
 /// Flexible pipe-handling arms and the impacts on their dampeners.
@@ -38,9 +40,11 @@ enum Command {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
         scenario: PathBuf,
-        /// Override the model: rigid, modal:N or fe.
+        /// Override the model: rigid, modal(N) or fe.
         #[arg(long, value_parser = parse_fidelity)]
         model: Option<Fidelity>,
+        #[command(flatten)]
+        overrides: Overrides,
         /// Folder for the recording and the summary.
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
@@ -77,6 +81,10 @@ enum Command {
         /// Print the comparison as JSON.
         #[arg(long)]
         json: bool,
+        /// Run at this model instead of each scenario's (rigid, modal(N) or fe): the baselines'
+        /// recorded model then differs, which fails unless --bless.
+        #[arg(long, value_parser = parse_fidelity)]
+        model: Option<Fidelity>,
     },
     /// Run the seed paper's experiment families (scenarios/seed/), in parallel: a chart, a table
     /// and one recording per variant.
@@ -128,7 +136,7 @@ enum Command {
         /// Shift the measured file in time to the cross-correlation's peak (reported).
         #[arg(long)]
         shift: bool,
-        /// Override the model: rigid, modal:N or fe.
+        /// Override the model: rigid, modal(N) or fe.
         #[arg(long, value_parser = parse_fidelity)]
         model: Option<Fidelity>,
         /// Folder for the report.
@@ -149,7 +157,7 @@ enum Command {
         /// Scenario keys to fit, comma separated (docs/measurements.md lists them).
         #[arg(long, value_delimiter = ',', required = true)]
         params: Vec<String>,
-        /// Override the model: rigid, modal:N or fe.
+        /// Override the model: rigid, modal(N) or fe.
         #[arg(long, value_parser = parse_fidelity)]
         model: Option<Fidelity>,
         /// Override the time step, s (keep it under a twentieth of the shortest impact).
@@ -191,18 +199,6 @@ fn exit_quietly_on_closed_pipe() {
     }
 }
 
-fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
-    match s {
-        "rigid" => Ok(Fidelity::Rigid),
-        "fe" => Ok(Fidelity::Fe),
-        _ => s
-            .strip_prefix("modal:")
-            .and_then(|n| n.parse().ok())
-            .map(|modes| Fidelity::Modal { modes })
-            .ok_or_else(|| format!("`{s}`: expected rigid, modal:N or fe")),
-    }
-}
-
 /// A viewer's URL as rerun writes them (`rerun+http://HOST:PORT/proxy`); rerun checks the rest.
 fn parse_viewer_url(s: &str) -> Result<String, String> {
     if s.contains("://") {
@@ -218,7 +214,7 @@ fn parse_viewer_url(s: &str) -> Result<String, String> {
 fn main() -> Result<()> {
     exit_quietly_on_closed_pipe();
     match Cli::parse().command {
-        Command::Run { scenario, model, out, no_record, record_rate, connect, spawn, csv } => {
+        Command::Run { scenario, model, overrides, out, no_record, record_rate, connect, spawn, csv } => {
             let viewer = match (connect, spawn) {
                 (Some(url), _) => Some(Viewer::Connect(url)),
                 (None, true) => Some(Viewer::Spawn),
@@ -232,10 +228,10 @@ fn main() -> Result<()> {
             };
             let outputs =
                 Outputs { files: (!no_record).then_some(out.as_path()), tables: csv.then_some(out.as_path()), viewer };
-            run_command(&scenario, options, outputs)
+            run_command(&scenario, &overrides, options, outputs)
         }
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
-        Command::Check { scenarios, baselines, bless, json } => check(scenarios, &baselines, bless, json),
+        Command::Check { scenarios, baselines, bless, json, model } => check(scenarios, &baselines, bless, json, model),
         Command::Seed { section, out } => seed(section.as_deref(), &out),
         Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
         Command::Sweep(args) => cli::sweep::sweep(args),
@@ -264,7 +260,7 @@ struct Outputs<'a> {
     viewer: Option<Viewer>,
 }
 
-fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()> {
+fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs: Outputs) -> Result<()> {
     if !(options.record_rate_hz.is_finite() && options.record_rate_hz > 0.0) {
         bail!("--record-rate = {}: allowed a rate > 0 Hz", options.record_rate_hz);
     }
@@ -272,7 +268,7 @@ fn run_command(path: &Path, options: RunOptions, outputs: Outputs) -> Result<()>
         pipearm::export::check_folder(out).context("--out")?;
     }
     let started = std::time::Instant::now();
-    let scenario = Scenario::load(path)?;
+    let scenario = overrides.load(path)?;
     let model = &scenario.model;
     let (result, series) = run_partial(model, &options);
     let name = &model.name;
@@ -365,7 +361,13 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
 }
 
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.
-fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool) -> Result<()> {
+fn check(
+    mut scenarios: Vec<PathBuf>,
+    baselines: &Path,
+    bless: bool,
+    json: bool,
+    model: Option<Fidelity>,
+) -> Result<()> {
     if scenarios.is_empty() {
         scenarios = pipearm::scenario::scenario_files(Path::new("scenarios")).context("reading scenarios/")?;
     }
@@ -374,7 +376,7 @@ fn check(mut scenarios: Vec<PathBuf>, baselines: &Path, bless: bool, json: bool)
     for path in &scenarios {
         let scenario = Scenario::load(path)?;
         let name = scenario.model.name.clone();
-        let (summary, _) = run(&scenario.model, None).with_context(|| format!("{}: running", path.display()))?;
+        let (summary, _) = run(&scenario.model, model).with_context(|| format!("{}: running", path.display()))?;
         let file = baseline_path(baselines, &name);
         if bless {
             let previous = read_baseline(&file, &name, path).ok();
@@ -501,20 +503,24 @@ fn print_summary(path: &Path, s: &RunSummary) {
         s.scenario,
         path.display(),
         s.robot,
-        s.payload_kg
+        s.payload_kg.max(0.0)
     );
     let detection = s.contact_detection.as_ref().map(|d| format!(" ({d})")).unwrap_or_default();
     println!("model               {}, {}, contact {}{detection}", s.model, s.integrator, s.contact_method);
     println!("static w/l          1/{:.0}: {}", 1.0 / s.static_w_over_l, s.stiffness_class);
     println!("model choice        {}", s.model_reason);
     let a = &s.motion_advice;
-    println!(
-        "motion advice       {} (seed §4); this drive: {:.2} °/s² against {:.1}: {}",
-        a.advice,
-        a.peak_accel_deg_s2,
-        a.limit_deg_s2,
-        if a.within { "within" } else { "outside the advice" }
-    );
+    if a.limit_deg_s2 > 0.0 {
+        println!(
+            "motion advice       {} (seed §4); this drive: {:.2} °/s² against {:.1}: {}",
+            a.advice,
+            a.peak_accel_deg_s2,
+            a.limit_deg_s2,
+            if a.within { "within" } else { "outside the advice" }
+        );
+    } else {
+        println!("motion advice       {} (seed §4); this drive: {:.2} °/s²", a.advice, a.peak_accel_deg_s2);
+    }
     println!(
         "simulated           {:.3} s in {} steps of {} s, wall {:.3} s ({:.0}x real time)",
         s.simulated_s,
@@ -530,13 +536,17 @@ fn print_summary(path: &Path, s: &RunSummary) {
     let r = &s.residual;
     let frequency =
         if r.frequency_hz.is_finite() { format!("{:.3} Hz", r.frequency_hz) } else { "no oscillation".into() };
-    println!(
-        "residual vibration  {:.3} mm, {frequency}, log decrement {:.3} (ζ = {:.4}), settles in {:.2} s",
-        1e3 * r.amplitude_m,
-        r.log_decrement,
-        r.damping_ratio,
-        r.settling_time_s
-    );
+    let settling = if r.settled {
+        format!("settles in {:.2} s", r.settling_time_s)
+    } else {
+        format!("not settled within the run's {:.2} s", r.settling_time_s)
+    };
+    let decrement = if r.log_decrement.is_finite() {
+        format!("log decrement {:.3} (ζ = {:.4})", r.log_decrement, r.damping_ratio)
+    } else {
+        "no decay measured".into()
+    };
+    println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}", 1e3 * r.amplitude_m);
     if let Some(slip) = &s.string_slip {
         println!(
             "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",
@@ -550,9 +560,14 @@ fn print_summary(path: &Path, s: &RunSummary) {
             println!("contact {:<14} no contact", p.pair);
             continue;
         }
+        let per_weight = if p.peak_force_per_payload_weight.is_finite() {
+            format!(" ({:.3} per payload weight)", p.peak_force_per_payload_weight)
+        } else {
+            String::new()
+        };
         println!(
-            "contact {:<14} peak {:.1} N at {:.3} s ({:.3} per payload weight), impulse {:.3} N·s, {} impacts",
-            p.pair, p.peak_force_n, p.peak_time_s, p.peak_force_per_payload_weight, p.impulse_n_s, p.impact_count
+            "contact {:<14} peak {:.1} N at {:.3} s{per_weight}, impulse {:.3} N·s, {} impacts",
+            p.pair, p.peak_force_n, p.peak_time_s, p.impulse_n_s, p.impact_count
         );
         for (k, i) in p.impacts.iter().enumerate().take(12) {
             println!(

@@ -416,12 +416,12 @@ impl Default for ContactOptions {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ContactMethod {
-    /// The pad's force law, evaluated inside the implicit arm step on the contact geometry that
-    /// parry finds between the pad and the arm's shapes.
+    /// Each pair's force law, evaluated inside the implicit arm step on the contact points
+    /// [`Detection`] finds.
     #[default]
     Compliant,
-    /// rapier's constraint solver against a pad body on a linear spring; the contact impulse / dt
-    /// is fed back to the arm.
+    /// Each pad a rapier body on its spring (a joint motor in rapier's solver): the spring's law
+    /// in the arm step, the pad body's inertia handed to the arm one step late.
     Rapier,
 }
 

@@ -101,7 +101,7 @@ pub fn chart(path: &Path, title: &str, variants: &[Variant]) -> Result<(), SeedE
             .map_err(|e| err(&e))?;
         c.configure_mesh().x_desc("time (s)").draw().map_err(|e| err(&e))?;
         for (k, v) in variants.iter().enumerate() {
-            let color = Palette99::pick(k).to_rgba();
+            let color = crate::bench::chart::AXIS_COLOURS[k % crate::bench::chart::AXIS_COLOURS.len()];
             // At most about 2000 points a curve: a figure, not the data (the recordings hold it).
             let stride = (v.series.t_s.len() / 2000).max(1);
             let points = v.series.t_s.iter().enumerate().step_by(stride).map(|(i, t)| (*t, pick(&v.series, i)));

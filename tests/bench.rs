@@ -65,3 +65,17 @@ fn a_quick_bench_of_the_lab_scene_agrees_with_its_reference_and_the_theory() {
     assert_eq!(csv.lines().count(), result.points.len() + 1);
     assert!(report_markdown(&result, "test").contains("## Stability map"));
 }
+
+/// The stability map's FE arm carrying the default's flexible string (its own DOFs beyond the
+/// arm's): generalized-α is unconditionally stable (Chung & Hulbert 1993), at the scene's step
+/// and at a hundred times it.
+#[test]
+fn the_fe_arm_carrying_a_flexible_string_is_mapped_stable_under_generalized_alpha() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let s = Scenario::load(&path).unwrap().model;
+    let arm = pipearm::bench::stability::undamped_arm(&s, pipearm::arm::Fidelity::Fe).unwrap();
+    assert!(arm.beam.member.is_some(), "the default's string is a beam of its own");
+    for step in [s.time.step_s, 100.0 * s.time.step_s] {
+        assert!(pipearm::bench::stability::arm_is_stable(&arm, IntegratorKind::default(), step), "at {step} s");
+    }
+}

@@ -42,7 +42,7 @@ fn events(path: &Path) -> Vec<String> {
 fn a_diverged_run_keeps_its_recording_up_to_the_divergence_and_writes_no_summary() {
     let out = scratch("diverged");
     // Eight modes at RK4's 3 ms step: ω_max·dt past RK4's limit (docs/performance.md).
-    let output = pipearm(&["run", "scenarios/default.toml", "--model", "modal:8", "--out", out.to_str().unwrap()]);
+    let output = pipearm(&["run", "scenarios/default.toml", "--model", "modal(8)", "--out", out.to_str().unwrap()]);
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(!output.status.success(), "the guard stops the run: {stderr}");
     assert!(stderr.contains("diverged at t ="), "{stderr}");

@@ -1,5 +1,7 @@
-//! The speed-against-accuracy chart: error against cost, log–log, every point labelled, the
-//! Pareto front drawn, one panel per error measure (SVG and PNG).
+//! The speed-against-accuracy chart: error against cost, log–log, one panel per error measure
+//! (SVG and PNG). Every point is a marker coloured by its axis of the grid; only the Pareto front
+//! and the scene's own setting are labelled (the CSV names every point); the legend stands beside
+//! the plot, not over it.
 
 use std::path::Path;
 
@@ -39,6 +41,28 @@ const PANELS: [(&str, Pick); 2] = [
     ("tip deflection history error (RMS / peak)", |m| m.tip_rms_error),
 ];
 
+/// Marker colours, one per axis of the grid: strong, and apart on white (Tableau 10, then darker
+/// tones).
+pub const AXIS_COLOURS: [RGBColor; 14] = [
+    RGBColor(31, 119, 180),
+    RGBColor(255, 127, 14),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(23, 190, 207),
+    RGBColor(0, 0, 128),
+    RGBColor(128, 0, 0),
+    RGBColor(0, 100, 0),
+    RGBColor(90, 60, 0),
+];
+
+/// Width of the legend beside each panel, px.
+const LEGEND_PX: u32 = 300;
+
 /// Errors below this are drawn at it (a log axis has no zero).
 const ERROR_FLOOR: f64 = 1e-7;
 
@@ -63,7 +87,11 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, result: &BenchResult) 
     let panels: Vec<_> = PANELS.iter().filter(|(name, _)| has_contact || !name.starts_with("peak")).collect();
     let areas = root.split_evenly((panels.len(), 1));
     let axes = axis_names(result);
-    for (area, (name, pick)) in areas.iter().zip(panels) {
+    for (whole, (name, pick)) in areas.iter().zip(panels) {
+        let width = whole.dim_in_pixel().0;
+        let (area, legend_area) = whole.split_horizontally(width.saturating_sub(LEGEND_PX));
+        let area = &area;
+        let legend_area = &legend_area;
         let ran: Vec<(&Point, (f64, f64))> = result
             .points
             .iter()
@@ -92,38 +120,36 @@ fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, result: &BenchResult) 
             .map_err(|e| err(&e))?;
         let xy: Vec<(f64, f64)> = ran.iter().map(|r| r.1).collect();
         let front: Vec<(f64, f64)> = pareto_front(&xy).into_iter().map(|i| xy[i]).collect();
-        chart
-            .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2)))
-            .map_err(|e| err(&e))?
-            .label("Pareto front")
-            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], BLACK.stroke_width(2)));
+        chart.draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(2))).map_err(|e| err(&e))?;
         for (k, axis) in axes.iter().enumerate() {
-            let color = Palette99::pick(k).to_rgba();
-            let mine: Vec<&(&Point, (f64, f64))> = ran.iter().filter(|r| &r.0.variant.axis == axis).collect();
-            chart
-                .draw_series(mine.iter().map(|r| Circle::new(r.1, 4, color.filled())))
-                .map_err(|e| err(&e))?
-                .label(axis.as_str())
-                .legend(move |(x, y)| Circle::new((x + 8, y), 4, color.filled()));
-            chart
-                .draw_series(
-                    mine.iter().map(|r| {
-                        Text::new(short_label(r.0), r.1, ("sans-serif", 9).into_font().color(&color.mix(0.9)))
-                    }),
-                )
-                .map_err(|e| err(&e))?;
+            let color = AXIS_COLOURS[k % AXIS_COLOURS.len()];
+            let mine = ran.iter().filter(|r| &r.0.variant.axis == axis);
+            chart.draw_series(mine.map(|r| Circle::new(r.1, 4, color.filled()))).map_err(|e| err(&e))?;
         }
         chart.draw_series(front.iter().map(|&p| Circle::new(p, 7, BLACK.stroke_width(1)))).map_err(|e| err(&e))?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 11))
-            .draw()
-            .map_err(|e| err(&e))?;
+        // Labels on the front and on the scene's own setting only: elsewhere they pile up.
+        let labelled = ran.iter().filter(|r| front.contains(&r.1) || r.0.variant.label() == result.own_label);
+        let font = ("sans-serif", 11).into_font().color(&BLACK);
+        chart.draw_series(labelled.map(|r| Text::new(short_label(r.0), r.1, font.clone()))).map_err(|e| err(&e))?;
+        legend(legend_area, &axes)?;
     }
     root.present().map_err(|e| err(&e))
+}
+
+/// The legend beside a panel: the Pareto front, then each axis's marker colour.
+fn legend<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, axes: &[String]) -> Result<(), String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let font = ("sans-serif", 13).into_font().color(&BLACK);
+    let row = |k: usize| 40 + 20 * k as i32;
+    area.draw(&PathElement::new(vec![(10, row(0)), (34, row(0))], BLACK.stroke_width(2))).map_err(|e| err(&e))?;
+    area.draw(&Circle::new((22, row(0)), 7, BLACK.stroke_width(1))).map_err(|e| err(&e))?;
+    area.draw(&Text::new("Pareto front (labelled)", (42, row(0) - 7), font.clone())).map_err(|e| err(&e))?;
+    for (k, axis) in axes.iter().enumerate() {
+        let color = AXIS_COLOURS[k % AXIS_COLOURS.len()];
+        area.draw(&Circle::new((22, row(k + 1)), 5, color.filled())).map_err(|e| err(&e))?;
+        area.draw(&Text::new(axis.as_str(), (42, row(k + 1) - 7), font.clone())).map_err(|e| err(&e))?;
+    }
+    Ok(())
 }
 
 /// The axes of the grid, in order of appearance.

@@ -9,7 +9,7 @@
 //! its strongest impact, whichever is shorter; how converged it is is shown by Richardson
 //! extrapolation over the step and by doubling the elements ([`Convergence`]).
 
-mod chart;
+pub mod chart;
 mod report;
 pub mod stability;
 
@@ -242,6 +242,8 @@ pub struct BenchResult {
     pub base_step_s: f64,
     /// The fidelity `auto` chose.
     pub auto_fidelity: Fidelity,
+    /// The label of the scene's own setting (its fidelity, integrator and step).
+    pub own_label: String,
     /// The string fidelity `auto` chose (`None` without a string).
     pub auto_string: Option<Fidelity>,
     /// The references, one per physics.
@@ -250,6 +252,25 @@ pub struct BenchResult {
     pub points: Vec<Point>,
     /// The stability map.
     pub stability: stability::StabilityMap,
+}
+
+/// The scene's own setting: `auto`'s fidelity, the scene's integrator, step and contact.
+pub fn own_setting(model: &Model, auto: Fidelity) -> Variant {
+    Variant {
+        axis: "fidelity".into(),
+        fidelity: auto,
+        elements: None,
+        integrator: model.integrator,
+        step_s: model.time.step_s,
+        free_step_s: None,
+        tolerance_m: None,
+        contact: ContactMethod::Compliant,
+        detection: model.contact.detection,
+        pad_mass_kg: None,
+        linear_pads: false,
+        clamp: model.payload.string().map(|held| held.clamp).unwrap_or_default(),
+        string: None,
+    }
 }
 
 /// The grid for a scene: each axis varied around the scene's own settings.
@@ -261,21 +282,7 @@ pub fn grid(model: &Model, auto: Fidelity, quick: bool) -> Vec<Variant> {
         .collect();
     let robot_elements = model.robot.arm.elements;
     let base_clamp = model.payload.string().map(|held| held.clamp);
-    let base = Variant {
-        axis: "fidelity".into(),
-        fidelity: auto,
-        elements: None,
-        integrator: model.integrator,
-        step_s: h0,
-        free_step_s: None,
-        tolerance_m: None,
-        contact: ContactMethod::Compliant,
-        detection: model.contact.detection,
-        pad_mass_kg: None,
-        linear_pads: false,
-        clamp: base_clamp.unwrap_or_default(),
-        string: None,
-    };
+    let base = own_setting(model, auto);
     let mut out = Vec::new();
     let modal_counts: Vec<usize> = if quick { vec![1, 3, 8] } else { (1..=8).collect() };
     let fidelities =
@@ -597,6 +604,7 @@ pub fn bench(
         scenario: model.name.clone(),
         base_step_s: model.time.step_s,
         auto_fidelity: auto,
+        own_label: own_setting(model, auto).label(),
         auto_string: match model.payload.string() {
             Some(_) => Some(model.string_fidelity().map_err(|e| labelled("string model choice")(e.into()))?.fidelity),
             None => None,

@@ -146,7 +146,10 @@ pub fn arm_is_stable(arm: &ArmModel, integrator: IntegratorKind, step_s: f64) ->
 fn every_mode_moving(arm: &ArmModel) -> DVector<f64> {
     match arm.fidelity {
         Fidelity::Fe => {
-            arm.beam.modes().map(|m| &m.shapes * DVector::repeat(m.shapes.ncols(), 1.0)).unwrap_or_default()
+            let n = arm.elastic_dofs();
+            // The arm's modes; a flexible string's own DOFs (beyond the arm's) start at rest.
+            let moving = arm.beam.modes().map(|m| &m.shapes * DVector::repeat(m.shapes.ncols(), 1.0));
+            moving.unwrap_or_default().resize_vertically(n, 0.0)
         }
         _ => DVector::repeat(arm.elastic_dofs(), 1.0),
     }

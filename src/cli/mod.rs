@@ -3,4 +3,5 @@
 pub mod design;
 pub mod envelope;
 pub mod measured;
+pub mod overrides;
 pub mod sweep;

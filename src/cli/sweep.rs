@@ -24,11 +24,12 @@ pub struct SweepArgs {
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
     threads: Option<u32>,
     /// Run only shard I of N (cases with index % N == I, I from 0); merge afterwards.
-    #[arg(long, value_name = "I/N", conflicts_with = "shards")]
+    #[arg(long, value_name = "I/N", conflicts_with = "shard_count")]
     shard: Option<pipearm::sweep::Shard>,
-    /// Run one of N shards, I from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; merge afterwards.
-    #[arg(long, value_name = "N")]
-    shards: Option<usize>,
+    /// Run one of N shards, I from SLURM_ARRAY_TASK_ID or JOB_COMPLETION_INDEX; merge afterwards
+    /// (`--shards N` is the old spelling, still read).
+    #[arg(long, value_name = "N", alias = "shards")]
+    shard_count: Option<usize>,
 }
 
 #[derive(Subcommand)]
@@ -62,7 +63,7 @@ pub fn sweep(args: SweepArgs) -> Result<()> {
         Some(SweepCommand::Chart { dirs, label, title, out }) => return chart(dirs, label, &title, &out),
         None => {}
     }
-    let shard = match (args.shard, args.shards) {
+    let shard = match (args.shard, args.shard_count) {
         (Some(shard), _) => shard,
         (None, Some(count)) => Shard::from_env(count, |name| std::env::var(name).ok())?,
         (None, None) => Shard::ALL,

@@ -7,7 +7,7 @@ use std::borrow::Cow;
 use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
 use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TextLogLevel, TimeColumn, TimePoint};
 
-use super::{Ending, Recorded, force_entity};
+use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, Recorded, force_entity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::model::StructureShape;
 use crate::scene::{Frame, SceneLayout};
@@ -43,8 +43,22 @@ pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
         let text = serde_json::to_string_pretty(summary).expect("a summary serializes");
         writer.log_static("summary", &rerun::TextDocument::from_markdown(format!("```json\n{text}\n```")))?;
     }
+    // The name the viewer lists the recording under.
+    writer.log_static("__properties", &rerun::RecordingInfo::update_fields().with_name(recording_name(run)))?;
     writer.chunks.extend(run.overlay.iter().cloned());
     Ok(writer.chunks)
+}
+
+/// What the viewer lists a recording as: its scenario, model and largest peak force, or where it
+/// diverged.
+fn recording_name(run: &Recorded) -> String {
+    match run.ending {
+        Ending::Finished(summary) => {
+            let peak = summary.pairs.iter().map(|p| p.peak_force_n).fold(0.0, f64::max);
+            format!("{} — {}, peak {peak:.1} N", summary.scenario, summary.model)
+        }
+        Ending::Diverged { scenario, t_s, .. } => format!("{scenario} — diverged at {t_s:.3} s"),
+    }
 }
 
 /// A contact pair's label (`arm–<pad>`) and impacts: the summary's, or for a diverged run those
@@ -196,10 +210,12 @@ impl Writer<'_> {
         let magnify = magnification(max_deflection, layout.length_m);
         let peak = pairs.iter().flat_map(|p| &p.1).map(|i| i.peak_force_n).fold(0.0, f64::max);
         let scale = arrow_scale_n_per_m(peak);
-        let centreline = format!("world/centreline_x{magnify:.0}");
-        let arrows = format!("world/contact_force_{scale:.0}N_per_m");
+        // Fixed entity paths, so that saved layouts and comparisons hold between runs; the display
+        // scales, which follow each run's deflection and peak force, are stated in the events.
+        let (centreline, arrows) = (CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY);
         let note = format!(
-            "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows {scale:.0} N per metre"
+            "display: deflection magnified {magnify:.0}x on `{centreline}`; force arrows on `{arrows}` at {scale:.0} N \
+             per metre"
         );
         let frames = &run.series.frames;
         let times = || TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
@@ -234,7 +250,7 @@ impl Writer<'_> {
         let columns = rerun::LineStrips3D::update_fields()
             .with_strips(magnified.collect::<Vec<_>>())
             .columns(std::iter::repeat_n(1, frames.len()))?;
-        self.send_columns(&centreline, times(), columns)?;
+        self.send_columns(centreline, times(), columns)?;
         if frames.iter().any(|f| !f.string_centreline.is_empty()) {
             let strips = frames.iter().map(|f| string_points(layout, f));
             let columns = rerun::LineStrips3D::update_fields()
@@ -256,7 +272,7 @@ impl Writer<'_> {
             .with_origins(origins)
             .with_vectors(vectors)
             .columns(frames.iter().map(|f| f.contacts.len()))?;
-        self.send_columns(&arrows, times(), columns)?;
+        self.send_columns(arrows, times(), columns)?;
         if let Some(cylinder) = &layout.cylinder {
             self.cylinder(cylinder, layout.pivot_m)?;
         }

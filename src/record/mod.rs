@@ -6,9 +6,10 @@
 //! | entity | what |
 //! |---|---|
 //! | `world/…` | 3D: hub, arm elements, hand, gripper, jaws, string, pads, ground (boxes, m, Y up) |
-//! | `world/centreline_x<M>` | the deformed centreline with its deflection magnified M times |
-//! | `world/contact_force_<S>N_per_m` | contact points and force arrows, S newtons per metre of arrow |
-//! | `plots/contact_force/arm-<pad>` | contact force per pair, N |
+//! | `world/centreline` | the deformed centreline, its deflection magnified (the factor in `events`) |
+//! | `world/contact_force` | every contact point with its force arrow (newtons per metre in `events`) |
+//! | `world/structures/<name>` | a rig structure |
+//! | `plots/contact_force/<side>-<obstacle>` | contact force per pair (`arm-<pad>`, `string-<structure>`), N |
 //! | `plots/tip_deflection/{axial,transverse}` | tip displacement in the hub frame, m |
 //! | `plots/tip_velocity/{axial,transverse}` | tip velocity in the hub frame, m/s |
 //! | `plots/hub/{angle_deg,rate_deg_s,accel_deg_s2}` | hub motion |
@@ -74,6 +75,12 @@ pub fn force_entity(series_name: &str) -> String {
     }
 }
 
+/// Entity path of the magnified centreline.
+pub const CENTRELINE_ENTITY: &str = "world/centreline";
+
+/// Entity path of the contact points and their force arrows.
+pub const CONTACT_FORCE_ENTITY: &str = "world/contact_force";
+
 /// Entity path of the transverse tip deflection series.
 pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection/transverse";
 
@@ -132,13 +139,23 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     let file = std::fs::File::create(&tmp).map_err(io)?;
     let written = content::chunks(run).map_err(|e| e.to_string()).and_then(|chunks| {
         let layout = layout::run_layout(layout::RunViews::of(run.series));
-        write_rrd(file, run.ending.scenario(), &chunks, &layout)
+        write_rrd(file, &recording_id(run), &chunks, &layout)
     });
     if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
         return Err(RecordError::Rrd { path: shown, message });
     }
     replace(&tmp, path).map_err(io)
+}
+
+/// A recording's id: its scenario and a digest of its results, so that two runs of one scenario
+/// with different results open as two recordings (not merged), and a re-run with the same
+/// results as the same one.
+fn recording_id(run: &Recorded) -> String {
+    let series = run.series;
+    let values = series.pad_force_n.iter().flatten().chain(series.tip_deflection_m.iter().flatten());
+    let digest = values.fold(0xcbf2_9ce4_8422_2325_u64, |h, v| (h ^ v.to_bits()).wrapping_mul(0x0100_0000_01b3));
+    format!("{}-{digest:016x}", run.ending.scenario())
 }
 
 /// The recording `recording_id` of `chunks`, then its blueprint `layout`, into `file`.

@@ -74,7 +74,7 @@ fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> 
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     let mut chart = force_weight_axes(&root, caption, x_lo..x_hi, y_hi).map_err(|e| err(&e))?;
     for (k, (label, points)) in curves.iter().enumerate() {
-        let color = Palette99::pick(k).to_rgba();
+        let color = crate::bench::chart::AXIS_COLOURS[k % crate::bench::chart::AXIS_COLOURS.len()];
         chart
             .draw_series(LineSeries::new(points.iter().copied(), color.stroke_width(2)))
             .map_err(|e| err(&e))?

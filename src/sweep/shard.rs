@@ -1,5 +1,5 @@
 //! Shards: shard `I` of `N` runs the cases with `index % N == I`. The index comes from
-//! `--shard I/N`, or with `--shards N` from the batch engine: Slurm job arrays set
+//! `--shard I/N`, or with `--shard-count N` from the batch engine: Slurm job arrays set
 //! `SLURM_ARRAY_TASK_ID`, Kubernetes Indexed Jobs `JOB_COMPLETION_INDEX`.
 
 use super::SweepError;
@@ -32,7 +32,7 @@ impl Shard {
     pub fn from_env(count: usize, lookup: impl Fn(&str) -> Option<String>) -> Result<Shard, SweepError> {
         let (name, text) = INDEX_VARIABLES.iter().find_map(|n| lookup(n).map(|v| (n, v))).ok_or_else(|| {
             SweepError::Shard(format!(
-                "--shards {count} without --shard needs the task index in {}; neither is set",
+                "--shard-count {count} without --shard needs the task index in {}; neither is set",
                 INDEX_VARIABLES.join(" or ")
             ))
         })?;

@@ -1,0 +1,59 @@
+//! What `pipearm run` and `pipearm check` may override of a scenario on the command line, applied
+//! to the file's own text before it is checked and resolved: the scenario's checks (an explicit
+//! integrator's stable step, an actuator's loop at the step) see the values that will run.
+
+use std::path::Path;
+
+use anyhow::{Context, Result, bail};
+use pipearm::arm::Fidelity;
+use pipearm::scenario::Scenario;
+
+/// Command-line overrides of a scenario.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct Overrides {
+    /// Override the time step around contact, s (`[time] step_s`).
+    #[arg(long, value_name = "SECONDS")]
+    pub step: Option<f64>,
+    /// Override the integrator: rk4, generalized-alpha, newmark, symplectic-euler, explicit-euler
+    /// (`[integrator] method`, with its parameters' defaults).
+    #[arg(long, value_name = "METHOD")]
+    pub integrator: Option<String>,
+}
+
+impl Overrides {
+    /// The scenario at `path` with these overrides.
+    pub fn load(&self, path: &Path) -> Result<Scenario> {
+        let scenario = Scenario::load(path)?;
+        if self.step.is_none() && self.integrator.is_none() {
+            return Ok(scenario);
+        }
+        let mut spec = scenario.spec;
+        if let Some(step) = self.step {
+            if !(step.is_finite() && step > 0.0) {
+                bail!("--step = {step}: allowed a step > 0 s");
+            }
+            spec.time.step_s = step;
+        }
+        if let Some(method) = &self.integrator {
+            spec.integrator = toml::from_str(&format!("method = \"{method}\""))
+                .with_context(|| format!("--integrator = {method}"))?;
+        }
+        Ok(Scenario::from_spec(path, spec)?)
+    }
+}
+
+/// A model fidelity as the summary prints it: `rigid`, `modal(N)` or `fe` (`modal:N` is the old
+/// spelling, still read).
+pub fn parse_fidelity(s: &str) -> Result<Fidelity, String> {
+    let modes = |n: &str| n.parse().ok().filter(|m: &usize| *m > 0).map(|modes| Fidelity::Modal { modes });
+    match s {
+        "rigid" => Ok(Fidelity::Rigid),
+        "fe" => Ok(Fidelity::Fe),
+        _ => s
+            .strip_prefix("modal(")
+            .and_then(|rest| rest.strip_suffix(')'))
+            .and_then(modes)
+            .or_else(|| s.strip_prefix("modal:").and_then(modes))
+            .ok_or_else(|| format!("`{s}`: expected rigid, modal(N) or fe")),
+    }
+}
