@@ -13,13 +13,14 @@ use clap::{Parser, Subcommand};
 use pipearm::analysis::StiffnessClass;
 use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
 use pipearm::beam::BeamModel;
-use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_recording, write_summary};
+use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
 use pipearm::run::{RunOptions, RunSummary, run, run_partial};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
 use cli::overrides::{Overrides, parse_fidelity};
+use cli::project::Project;
 
 mod cli;
 
@@ -72,9 +73,13 @@ enum Command {
     Check {
         /// Scenario files (default: every scenarios/*.toml).
         scenarios: Vec<PathBuf>,
-        /// Folder of the baselines.
-        #[arg(long, default_value = "tests/baselines")]
-        baselines: PathBuf,
+        /// Folder of the baselines (default: the project's tests/baselines/, the project of the
+        /// first scenario given, else --project's).
+        #[arg(long)]
+        baselines: Option<PathBuf>,
+        /// The project whose scenarios/*.toml are checked when none is given.
+        #[arg(long, default_value = ".")]
+        project: PathBuf,
         /// Rewrite the baselines from these runs (keeping their tolerances) and print what changed.
         #[arg(long)]
         bless: bool,
@@ -91,6 +96,9 @@ enum Command {
     Seed {
         /// Section to run (e.g. 3.1.1-drive); all if omitted.
         section: Option<String>,
+        /// The project whose scenarios/seed/ families are run.
+        #[arg(long, default_value = ".")]
+        project: PathBuf,
         /// Output folder (charts and recordings under <out>/seed/).
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
@@ -99,9 +107,11 @@ enum Command {
     /// clamp modes against a converged reference; write a CSV, a chart (SVG, PNG), the stability
     /// map and a Markdown report per scenario under <out>/<name>/.
     Bench {
-        /// Scenario files.
-        #[arg(default_value = "scenarios/default.toml")]
+        /// Scenario files (default: the project's scenarios/default.toml).
         scenarios: Vec<PathBuf>,
+        /// The project whose default scenario is benched when none is given.
+        #[arg(long, default_value = ".")]
+        project: PathBuf,
         /// Output folder.
         #[arg(long, default_value = "recordings/bench")]
         out: PathBuf,
@@ -170,6 +180,12 @@ enum Command {
         #[arg(long, default_value = "recordings")]
         out: PathBuf,
     },
+    /// Write a starter project into DIR (a scenario and the robot it names, an empty baselines
+    /// folder): `cd DIR && pipearm run` then runs.
+    Init {
+        /// The folder (created if need be; refused if it already holds scenarios/ or robots/).
+        dir: PathBuf,
+    },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
@@ -231,9 +247,17 @@ fn main() -> Result<()> {
             run_command(&scenario, &overrides, options, outputs)
         }
         Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
-        Command::Check { scenarios, baselines, bless, json, model } => check(scenarios, &baselines, bless, json, model),
-        Command::Seed { section, out } => seed(section.as_deref(), &out),
-        Command::Bench { scenarios, out, repeats, quick } => bench(&scenarios, &out, repeats, quick),
+        Command::Check { scenarios, baselines, project, bless, json, model } => {
+            check(scenarios, baselines, &Project::at(&project), (bless, json), model)
+        }
+        Command::Seed { section, project, out } => cli::seed::seed(section.as_deref(), &Project::at(&project), &out),
+        Command::Bench { mut scenarios, project, out, repeats, quick } => {
+            if scenarios.is_empty() {
+                scenarios.push(Project::at(&project).default_scenario());
+            }
+            bench(&scenarios, &out, repeats, quick)
+        }
+        Command::Init { dir } => cli::project::init(&dir),
         Command::Sweep(args) => cli::sweep::sweep(args),
         Command::Envelope(args) => cli::envelope::envelope(args),
         Command::Design(args) => cli::design::design_command(args),
@@ -363,13 +387,20 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
 /// Runs each scenario and compares it with its baseline; fails if any quantity is off.
 fn check(
     mut scenarios: Vec<PathBuf>,
-    baselines: &Path,
-    bless: bool,
-    json: bool,
+    baselines: Option<PathBuf>,
+    project: &Project,
+    (bless, json): (bool, bool),
     model: Option<Fidelity>,
 ) -> Result<()> {
+    let baselines = baselines.unwrap_or_else(|| match scenarios.first() {
+        Some(first) => Project::of_scenario(first).baselines(),
+        None => project.baselines(),
+    });
+    let baselines = baselines.as_path();
     if scenarios.is_empty() {
-        scenarios = pipearm::scenario::scenario_files(Path::new("scenarios")).context("reading scenarios/")?;
+        let folder = project.scenarios();
+        scenarios =
+            pipearm::scenario::scenario_files(&folder).with_context(|| format!("reading {}", folder.display()))?;
     }
     let mut failed = 0;
     let mut report = Vec::new();
@@ -412,31 +443,6 @@ fn check(
     if failed > 0 {
         bail!(
             "{failed} quantities outside their tolerance or settings changed (docs/regression.md); `pipearm check --bless` accepts a change on purpose"
-        );
-    }
-    Ok(())
-}
-
-fn seed(only: Option<&str>, out: &Path) -> Result<()> {
-    let sections = pipearm::seed::sections(Path::new("scenarios/seed")).context("reading scenarios/seed/")?;
-    let chosen: Vec<_> = sections.into_iter().filter(|(name, _)| only.is_none_or(|o| name == o)).collect();
-    if chosen.is_empty() {
-        bail!("no section `{}` under scenarios/seed/", only.unwrap_or_default());
-    }
-    for (section, files) in chosen {
-        let variants = pipearm::seed::run_family(&files, true)?;
-        let dir = out.join("seed").join(&section);
-        for v in &variants {
-            let pads = v.scenario.model.pair_series_names();
-            write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series, &pads)?;
-        }
-        let chart = out.join("seed").join(format!("{section}.svg"));
-        pipearm::seed::chart(&chart, &section, &variants)?;
-        println!(
-            "## {section}\n\n{}\nchart {}, recordings {}\n",
-            pipearm::seed::table(&variants),
-            chart.display(),
-            dir.display()
         );
     }
     Ok(())

@@ -226,10 +226,14 @@ pub struct Scenario {
 impl Scenario {
     /// Reads, checks and resolves a scenario file and the robot it names.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        Self::from_spec(path, Self::read_spec(path)?)
+    }
+
+    /// Reads a scenario file as written, before its checks (to edit it first).
+    pub fn read_spec(path: &Path) -> Result<ScenarioSpec, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        let spec: ScenarioSpec = toml::from_str(&text)
-            .map_err(|e| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) })?;
-        Self::from_spec(path, spec)
+        toml::from_str(&text)
+            .map_err(|e| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) })
     }
 
     /// Checks and resolves a spec as if read from `path` (robot paths resolve against its folder).

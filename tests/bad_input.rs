@@ -118,7 +118,7 @@ fn scenario_errors_name_file_key_and_range() {
     let m = load_error("beyond-limit", |t| t.replace("end_deg = 90.0", "end_deg = 120.0"));
     assert!(m.contains("drive.end_deg") && m.contains("limits"), "{m}");
     let m = load_error("pipe", |t| t.replace("size = \"2-7/8\"", "size = \"2-1/2\""));
-    assert!(m.contains("payload.string.size") && m.contains("2-3/8"), "{m}");
+    assert!(m.contains("payload.size") && m.contains("2-3/8"), "{m}");
     let m = load_error("pad-station", |t| t.replace("station_m = 8.2", "station_m = 12.0"));
     assert!(m.contains("dampeners[0].station_m") && m.contains("0 ..= 9"), "{m}");
     let m = load_error("pad-law", |t| t.replace("restitution = 0.6", "restitution = 1.6"));

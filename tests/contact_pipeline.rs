@@ -174,3 +174,30 @@ fn the_guide_holds_the_string_as_a_cantilever_from_its_hand() {
     println!("string on the guide: {final_force:.2} N vs {exact:.2} N (a = {a:.2} m)");
     assert!(rel(final_force, exact) < 0.03, "{final_force} N vs {exact} N");
 }
+
+/// `auto` takes the pad-face path only where it holds the pipeline's peak force to 0.1 %: on
+/// every shipped scene where it picks it, both are run and compared (the structures' scene takes
+/// the pipeline).
+#[test]
+fn auto_picks_the_pad_face_path_only_within_a_tenth_of_a_percent_of_the_pipeline() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios");
+    for path in pipearm::scenario::scenario_files(&folder).unwrap() {
+        let mut s = Scenario::load(&path).unwrap().model;
+        if s.dampeners.is_empty() || s.contact.method != pipearm::model::ContactMethod::Compliant {
+            continue;
+        }
+        let fidelity = pipearm::select::fidelity(&s).unwrap().fidelity;
+        let picked = Scene::with_fidelity(&s, fidelity).unwrap().detection();
+        if !s.structures.is_empty() {
+            assert_eq!(picked, Detection::Pipeline, "{}", s.name);
+            continue;
+        }
+        assert_eq!(picked, Detection::PadFace, "{}", s.name);
+        let peak = |s: &Model| run(s, None).unwrap().0.pairs.iter().map(|p| p.peak_force_n).fold(0.0, f64::max);
+        let pad_face = peak(&s);
+        s.contact.detection = Detection::Pipeline;
+        let pipeline = peak(&s);
+        println!("{}: pad-face {pad_face:.2} N, pipeline {pipeline:.2} N", s.name);
+        assert!(rel(pad_face, pipeline) < 1e-3, "{}: {pad_face} vs {pipeline}", s.name);
+    }
+}

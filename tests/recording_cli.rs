@@ -101,3 +101,31 @@ fn spawn_without_a_viewer_on_the_path_names_what_it_looked_for() {
     assert!(!output.status.success());
     assert!(stderr.contains("Rerun Viewer executable"), "{stderr}");
 }
+
+/// `run --step` and `--integrator` override the file's before its checks: the summary runs them;
+/// an RK4 step beyond the arm's explicit limit is refused as the file would be; an unknown
+/// method is named. `check --model` runs another model than the baseline's and fails naming it.
+#[test]
+fn run_and_check_take_their_overrides_through_the_scenarios_checks() {
+    let run = |extra: &[&str]| {
+        let mut args = vec!["run", "scenarios/default.toml", "--no-record"];
+        args.extend_from_slice(extra);
+        pipearm(&args)
+    };
+    let out = run(&["--step", "0.0015", "--integrator", "generalized-alpha"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("generalized-alpha") && stdout.contains("steps of 0.0015 s"), "{stdout}");
+    // The file's RK4 at 3 ms would be refused at 30 ms; generalized-alpha there is not.
+    let out = run(&["--step", "0.03", "--integrator", "generalized-alpha"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = run(&["--step", "0.05"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("step_s") && !stderr.contains("panicked"), "{stderr}");
+    let out = run(&["--integrator", "warp-drive"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success() && stderr.contains("--integrator") && stderr.contains("rk4"), "{stderr}");
+    let out = pipearm(&["check", "scenarios/default.toml", "--model", "modal(2)"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!out.status.success() && stdout.contains("model") && stdout.contains("modal(2)"), "{stdout}");
+}

@@ -4,4 +4,6 @@ pub mod design;
 pub mod envelope;
 pub mod measured;
 pub mod overrides;
+pub mod project;
+pub mod seed;
 pub mod sweep;

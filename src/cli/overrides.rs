@@ -23,11 +23,7 @@ pub struct Overrides {
 impl Overrides {
     /// The scenario at `path` with these overrides.
     pub fn load(&self, path: &Path) -> Result<Scenario> {
-        let scenario = Scenario::load(path)?;
-        if self.step.is_none() && self.integrator.is_none() {
-            return Ok(scenario);
-        }
-        let mut spec = scenario.spec;
+        let mut spec = Scenario::read_spec(path)?;
         if let Some(step) = self.step {
             if !(step.is_finite() && step > 0.0) {
                 bail!("--step = {step}: allowed a step > 0 s");

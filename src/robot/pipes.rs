@@ -63,7 +63,7 @@ pub const PIPE_CATALOGUE: [PipeSize; 4] = [
 /// Looks a size up ("2-7/8", "4-1/2", ...).
 pub fn pipe_size(size: &str) -> Result<&'static PipeSize, RobotError> {
     PIPE_CATALOGUE.iter().find(|p| p.size == size).ok_or_else(|| RobotError::Invalid {
-        key: "payload.string.size".into(),
+        key: "payload.size".into(),
         message: format!(
             "unknown pipe size `{size}`: allowed {}",
             PIPE_CATALOGUE.iter().map(|p| p.size).collect::<Vec<_>>().join(", ")
@@ -97,7 +97,7 @@ impl PipeString {
         let length_m = spec.length_m.unwrap_or(pipe.joint_length_m);
         if !(length_m.is_finite() && length_m > 0.0 && length_m <= 40.0) {
             return Err(RobotError::Invalid {
-                key: "payload.string.length_m".into(),
+                key: "payload.length_m".into(),
                 message: format!("{length_m} is outside 0 < length_m <= 40 (one stand at most)"),
             });
         }
@@ -149,6 +149,6 @@ mod tests {
     #[test]
     fn unknown_size_lists_the_catalogue() {
         let e = pipe_size("2-1/2").unwrap_err().to_string();
-        assert!(e.contains("2-7/8") && e.contains("payload.string.size"), "{e}");
+        assert!(e.contains("2-7/8") && e.contains("payload.size"), "{e}");
     }
 }
