@@ -52,8 +52,8 @@ pub enum ScenarioError {
     #[error("{path}: key `{key}`: {message}")]
     Invalid { path: PathBuf, key: String, message: String },
     /// In the robot the scenario names.
-    #[error("{path}: robot: {source}")]
-    Robot { path: PathBuf, source: RobotError },
+    #[error("{path}: robot: {error}")]
+    Robot { path: PathBuf, error: RobotError },
 }
 
 /// A scenario as written in its file.
@@ -254,7 +254,7 @@ impl Scenario {
 
     /// Reads and checks the robot `spec` names.
     pub fn load_robot(path: &Path, spec: &ScenarioSpec) -> Result<Robot, ScenarioError> {
-        load_robot(&Self::robot_path(path, spec)).map_err(|source| ScenarioError::Robot { path: path.into(), source })
+        load_robot(&Self::robot_path(path, spec)).map_err(|error| ScenarioError::Robot { path: path.into(), error })
     }
 
     /// Checks and resolves a spec as if read from `path`, with its robot already read by
@@ -449,8 +449,10 @@ impl Check<'_> {
         Ok(match spec {
             PayloadSpec::None => Payload::None,
             PayloadSpec::String { string, at, grips, clamp, friction_coefficient, squeeze_n, model, damping_ratio } => {
-                let pipe = PipeString::from_spec(string)
-                    .map_err(|source| ScenarioError::Robot { path: self.path.into(), source })?;
+                let pipe = PipeString::from_spec(string).map_err(|e| match e {
+                    RobotError::Invalid { key, message } => self.invalid(&key, message),
+                    other => ScenarioError::Robot { path: self.path.into(), error: other },
+                })?;
                 let damping_ratio = damping_ratio.unwrap_or(crate::model::DEFAULT_STRING_DAMPING_RATIO);
                 if !(damping_ratio.is_finite() && (0.0..2.0).contains(&damping_ratio)) {
                     return Err(

@@ -1,5 +1,5 @@
-//! The FE beam against exact Euler–Bernoulli solutions (`shared/reference/beam_eigenvalues.md`,
-//! classical static formulas).
+//! The FE beam against exact Euler–Bernoulli solutions (the roots of the frequency equations,
+//! Blevins, Formulas for Natural Frequency and Mode Shape; classical static formulas).
 
 mod common;
 

@@ -1,5 +1,6 @@
 //! A rigid mass dropped on a dampener with each force law, against the closed forms of
-//! `shared/reference/contact_laws.md` (integrated with RK4 at a step far below the contact time).
+//! Hertz and the linear spring, and the restitution of each law's published derivation (integrated
+//! with RK4 at a step far below the contact time).
 
 mod common;
 

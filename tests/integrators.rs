@@ -1,5 +1,5 @@
-//! Integrator stability and accuracy against the closed-form facts of
-//! `shared/reference/integrators.md`.
+//! Integrator stability and accuracy against closed-form facts: the stability intervals and
+//! orders of Hairer & Wanner, Solving Ordinary Differential Equations I–II.
 
 use nalgebra::{DMatrix, DVector};
 use pipearm::integrate::{Dynamics, ExplicitEuler, GeneralizedAlpha, Integrator, Rk4, State, SymplecticEuler};

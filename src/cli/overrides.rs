@@ -14,8 +14,8 @@ pub struct Overrides {
     /// Override the time step around contact, s (`[time] step_s`).
     #[arg(long, value_name = "SECONDS")]
     pub step: Option<f64>,
-    /// Override the integrator: rk4, generalized-alpha, newmark, symplectic-euler, explicit-euler
-    /// (`[integrator] method`, with its parameters' defaults).
+    /// Override the integrator: rk4, generalized-alpha, newmark, hht, symplectic-euler,
+    /// explicit-euler (`[integrator] method`, with its parameters' defaults).
     #[arg(long, value_name = "METHOD")]
     pub integrator: Option<String>,
 }

@@ -75,7 +75,11 @@ pub fn init(dir: &Path) -> Result<()> {
         }
         std::fs::write(&path, text).with_context(|| format!("writing {}", path.display()))
     };
-    write(project.default_scenario(), STARTER_SCENARIO)?;
+    // Its comments cite pipearm's own pages, which the new project does not hold.
+    let scenario = STARTER_SCENARIO
+        .replace("(robots/README.md, docs/", "(pipearm's robots/README.md and docs/")
+        .replace("(docs/", "(pipearm's docs/");
+    write(project.default_scenario(), &scenario)?;
     write(dir.join("robots").join("pipe_arm.urdf"), STARTER_ROBOT)?;
     std::fs::create_dir_all(project.baselines())
         .with_context(|| format!("creating {}", project.baselines().display()))?;

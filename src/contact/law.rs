@@ -1,4 +1,5 @@
-//! Continuous contact force laws for a rubber dampener (`shared/reference/contact_laws.md`).
+//! Continuous contact force laws for a rubber dampener: Hunt & Crossley (1975), Lankarani &
+//! Nikravesh (1990), Flores et al. (2011) and MSC ADAMS's IMPACT function.
 //!
 //! Penetration δ ≥ 0 (m) and its rate δ̇ (m/s, positive while closing). The force is the normal
 //! push of the pad, N, never a pull: laws whose damping term would pull during separation are

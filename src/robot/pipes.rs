@@ -1,4 +1,5 @@
-//! API 5CT tubing and casing (`shared/reference/pipes.md`), and pipe strings made of them.
+//! API 5CT tubing and casing (API Specification 5CT, Casing and Tubing: outside diameters, nominal
+//! weights and walls), and pipe strings made of them.
 
 use serde::{Deserialize, Serialize};
 
