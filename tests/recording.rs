@@ -150,6 +150,9 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
     let root = root.expect("the viewport has a root container");
     assert!(blueprint_paths.contains(&format!("/container/{root}")), "root {root} not in {blueprint_paths:?}");
     assert_eq!(blueprint_paths.iter().filter(|p| p.starts_with("/container/")).count(), 2, "{blueprint_paths:?}");
+    // The 3D view opens framed on the lift: its camera is set, on the one 3D view.
+    let eyes = blueprint_paths.iter().filter(|p| p.starts_with("/view/") && p.ends_with("/EyeControls3D")).count();
+    assert_eq!(eyes, 1, "{blueprint_paths:?}");
 
     // Events: on sim_time (not static, which would shadow every timed row), three per impact.
     let events = events.expect("an events chunk");

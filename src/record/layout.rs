@@ -5,12 +5,34 @@
 /// containers.
 #[derive(Debug, Clone, PartialEq)]
 pub enum BlueprintLayout {
-    /// A view of the entities under `origin`.
-    View { class: &'static str, name: &'static str, origin: &'static str },
+    /// A view of the entities under `origin` (a 3D view's camera where `eye` gives it).
+    View { class: &'static str, name: &'static str, origin: &'static str, eye: Option<Eye> },
     /// Side by side.
     Horizontal(Vec<BlueprintLayout>),
     /// One above the other.
     Vertical(Vec<BlueprintLayout>),
+}
+
+/// Where a 3D view's camera stands and what it looks at, world m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Eye {
+    /// The camera.
+    pub position_m: [f32; 3],
+    /// The point it looks at (and orbits about).
+    pub look_target_m: [f32; 3],
+}
+
+impl Eye {
+    /// Framing the lift plane an arm of `length_m` pivoting at `pivot_m` sweeps from the
+    /// horizontal to the vertical: looking at the middle of that quarter disc from in front of
+    /// the plane, a little to the side and above.
+    pub fn framing_the_lift(pivot_m: [f64; 3], length_m: f64) -> Self {
+        let l = length_m as f32;
+        let [x, y, z] = pivot_m.map(|v| v as f32);
+        let target = [x + 0.45 * l, y + 0.4 * l, z];
+        // Far enough that the quarter disc fits the scene's panel, a third of the window wide.
+        Eye { position_m: [target[0] + 0.3 * l, target[1] + 0.5 * l, z + 2.8 * l], look_target_m: target }
+    }
 }
 
 /// What a run's actuator adds to the layout.
@@ -25,18 +47,24 @@ pub enum ActuatorViews {
 }
 
 /// The plots a run's outputs call for besides the ones every run has.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunViews {
     /// The actuator's.
     pub actuator: ActuatorViews,
     /// A held string's tip deflection.
     pub string: bool,
+    /// The 3D view's camera (a run with frames).
+    pub eye: Option<Eye>,
 }
 
 impl RunViews {
     /// The views for a run's series.
     pub fn of(series: &crate::run::Series) -> Self {
-        RunViews { actuator: ActuatorViews::of(&series.actuator), string: !series.string_tip_deflection_m.is_empty() }
+        RunViews {
+            actuator: ActuatorViews::of(&series.actuator),
+            string: !series.string_tip_deflection_m.is_empty(),
+            eye: series.layout.as_ref().map(|l| Eye::framing_the_lift(l.pivot_m, l.length_m)),
+        }
     }
 }
 
@@ -45,7 +73,7 @@ impl RunViews {
 /// the other on the right.
 pub fn run_layout(views: RunViews) -> BlueprintLayout {
     let actuator = views.actuator;
-    let view = |class, name, origin| BlueprintLayout::View { class, name, origin };
+    let view = |class, name, origin| BlueprintLayout::View { class, name, origin, eye: None };
     let mut plots = vec![
         view("TimeSeries", "contact force (N)", "plots/contact_force"),
         view("TimeSeries", "tip deflection (m)", "plots/tip_deflection"),
@@ -61,7 +89,8 @@ pub fn run_layout(views: RunViews) -> BlueprintLayout {
         plots.push(view("TimeSeries", "chamber pressures (Pa)", "plots/actuator/pressure"));
     }
     plots.push(view("TextLog", "events", "events"));
-    BlueprintLayout::Horizontal(vec![view("3D", "scene", "world"), BlueprintLayout::Vertical(plots)])
+    let scene = BlueprintLayout::View { class: "3D", name: "scene", origin: "world", eye: views.eye };
+    BlueprintLayout::Horizontal(vec![scene, BlueprintLayout::Vertical(plots)])
 }
 
 impl ActuatorViews {

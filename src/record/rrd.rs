@@ -98,10 +98,18 @@ impl RrdFile {
         *ids += 1;
         let id = blueprint_uuid(self.recording.recording_id().as_str(), *ids);
         match part {
-            BlueprintLayout::View { class, name, origin } => {
+            BlueprintLayout::View { class, name, origin, eye } => {
                 let path = format!("view/{}", uuid_text(&id));
                 let contents = blueprint::ViewContents::new([blueprint::QueryExpression("$origin/**".into())]);
                 self.blueprint_row(store, &format!("{path}/ViewContents"), &contents)?;
+                if let Some(eye) = eye {
+                    // A view property, at the path rerun's own blueprint API logs them.
+                    let controls = blueprint::EyeControls3D::new()
+                        .with_kind(blueprint::Eye3DKind::Orbital)
+                        .with_position(eye.position_m)
+                        .with_look_target(eye.look_target_m);
+                    self.blueprint_row(store, &format!("{path}/EyeControls3D"), &controls)?;
+                }
                 let view = blueprint::ViewBlueprint::new(blueprint::ViewClass((*class).into()))
                     .with_display_name(rerun::components::Name((*name).into()))
                     .with_space_origin(*origin);
@@ -142,9 +150,11 @@ impl RrdFile {
 
 /// Blueprint types (`rerun::blueprint` re-exports their components, not their archetypes).
 mod blueprint {
-    pub use rerun::blueprint::components::{ContainerKind, IncludedContent, QueryExpression, RootContainer, ViewClass};
+    pub use rerun::blueprint::components::{
+        ContainerKind, Eye3DKind, IncludedContent, QueryExpression, RootContainer, ViewClass,
+    };
     pub use rerun::external::re_sdk_types::blueprint::archetypes::{
-        ContainerBlueprint, ViewBlueprint, ViewContents, ViewportBlueprint,
+        ContainerBlueprint, EyeControls3D, ViewBlueprint, ViewContents, ViewportBlueprint,
     };
 }
 

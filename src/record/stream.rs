@@ -100,8 +100,11 @@ fn blueprint(views: RunViews) -> Blueprint {
 
 fn to_rerun(part: BlueprintLayout) -> ContainerLike {
     match part {
-        BlueprintLayout::View { class: "3D", name, origin } => Spatial3DView::new(name).with_origin(origin).into(),
-        BlueprintLayout::View { class: "TextLog", name, origin } => TextLogView::new(name).with_origin(origin).into(),
+        // rerun's SDK sets no camera on a 3D view: the viewer frames the scene itself.
+        BlueprintLayout::View { class: "3D", name, origin, .. } => Spatial3DView::new(name).with_origin(origin).into(),
+        BlueprintLayout::View { class: "TextLog", name, origin, .. } => {
+            TextLogView::new(name).with_origin(origin).into()
+        }
         BlueprintLayout::View { name, origin, .. } => TimeSeriesView::new(name).with_origin(origin).into(),
         BlueprintLayout::Horizontal(children) => Horizontal::new(children.into_iter().map(to_rerun)).into(),
         BlueprintLayout::Vertical(children) => Vertical::new(children.into_iter().map(to_rerun)).into(),
