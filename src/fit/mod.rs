@@ -68,6 +68,7 @@ const FITTABLE: &str = "arm.damping_ratios.N, dampeners.N.law.stiffness, dampene
 
 /// Bounds of a fittable key around its scenario value, or why it is not fittable.
 fn bounds_of(key: &str, initial: f64) -> Result<(f64, f64), String> {
+    let key = &crate::sweep::plan::dotted_key(key);
     let last = key.rsplit('.').next().unwrap_or(key);
     let decade = |f: f64| (initial / f, initial * f);
     let bounds = if key.starts_with("arm.damping_ratios.") {
@@ -144,7 +145,7 @@ impl Problem {
         })?;
         // The damping ratios live in the URDF unless the scenario overrides them: make the
         // override explicit, so that its entries can be set.
-        if keys.iter().any(|k| k.starts_with("arm.damping_ratios.")) {
+        if keys.iter().any(|k| crate::sweep::plan::dotted_key(k).starts_with("arm.damping_ratios.")) {
             explicit_damping_ratios(&mut document, &scenario.model.robot);
         }
         let parameters = keys

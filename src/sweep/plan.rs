@@ -113,7 +113,7 @@ impl Plan {
 /// ratios made explicit where a key sets one of them ([`explicit_damping_ratios`]).
 pub fn base_document<'k>(path: &Path, keys: impl IntoIterator<Item = &'k str>) -> Result<toml::Value, ScenarioError> {
     let mut document = read_document(path)?;
-    if keys.into_iter().any(|k| k.starts_with("arm.damping_ratios.")) {
+    if keys.into_iter().any(|k| dotted_key(k).starts_with("arm.damping_ratios.")) {
         let robot = Scenario::load_robot(path, &spec_of(path, document.clone())?)?;
         explicit_damping_ratios(&mut document, &robot);
     }
@@ -175,10 +175,29 @@ pub(crate) fn case_spec(
     })
 }
 
-/// Sets the dotted `key` in `document`; every segment but the last must exist (a numeric
-/// segment indexes an array). The error message says what does exist there.
+/// The segments of a key path as errors write it, `dampeners[0].gap_m` (the dotted index,
+/// `dampeners.0.gap_m`, is read too): names, and indices into arrays.
+pub fn key_segments(key: &str) -> Vec<&str> {
+    key.split('.')
+        .flat_map(|part| match part.split_once('[') {
+            Some((name, rest)) => {
+                let indices = rest.trim_end_matches(']').split("][");
+                std::iter::once(name).chain(indices).collect::<Vec<_>>()
+            }
+            None => vec![part],
+        })
+        .collect()
+}
+
+/// `key` with its indices dotted (`dampeners.0.gap_m`), for comparing keys however written.
+pub fn dotted_key(key: &str) -> String {
+    key_segments(key).join(".")
+}
+
+/// Sets `key` (`a.b[0].c`) in `document`; every segment but the last must exist (an index
+/// picks from an array). The error message says what does exist there.
 pub fn set_key(document: &mut toml::Value, key: &str, value: toml::Value) -> Result<(), String> {
-    let segments: Vec<&str> = key.split('.').collect();
+    let segments: Vec<&str> = key_segments(key);
     let (last, parents) = segments.split_last().expect("split gives at least one segment");
     let mut node = document;
     for (depth, segment) in parents.iter().enumerate() {
@@ -310,8 +329,10 @@ mod tests {
         set_key(&mut doc, "a.b", toml::Value::Integer(5)).unwrap();
         set_key(&mut doc, "a.new", toml::Value::Integer(6)).unwrap();
         set_key(&mut doc, "c.0.d", toml::Value::Integer(7)).unwrap();
+        set_key(&mut doc, "c[0].e", toml::Value::Integer(8)).unwrap();
         assert_eq!(doc["a"]["b"].as_integer(), Some(5));
         assert_eq!(doc["c"][0]["d"].as_integer(), Some(7));
+        assert_eq!(doc["c"][0]["e"].as_integer(), Some(8));
         assert!(set_key(&mut doc, "x.y", toml::Value::Integer(1)).unwrap_err().contains("there: a, c"));
         assert!(set_key(&mut doc, "c.1.d", toml::Value::Integer(1)).unwrap_err().contains("outside the array `c`"));
         assert!(set_key(&mut doc, "a.b.z", toml::Value::Integer(1)).unwrap_err().contains("`a.b` is of type integer"));

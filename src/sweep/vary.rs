@@ -33,14 +33,16 @@ impl std::str::FromStr for Vary {
     }
 }
 
-/// Whether `key` is a dotted path of names and indices (`dampeners.0.gap_m`), the form every
-/// scenario key on the command line takes.
+/// Whether `key` is a path of names and indices as errors write it (`dampeners[0].gap_m`; the
+/// dotted index `dampeners.0.gap_m` is read too), the form every scenario key on the command
+/// line takes.
 pub fn check_key(key: &str) -> Result<(), String> {
     let segment_ok = |s: &str| !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-');
-    if key.split('.').all(segment_ok) {
+    let brackets_ok = key.matches('[').count() == key.matches(']').count();
+    if brackets_ok && crate::sweep::plan::key_segments(key).into_iter().all(segment_ok) {
         Ok(())
     } else {
-        Err(format!("key `{key}` is not a dotted path of names and indices"))
+        Err(format!("key `{key}` is not a path of names and indices such as dampeners[0].gap_m"))
     }
 }
 
@@ -157,6 +159,16 @@ mod tests {
         assert_eq!(parse("drive.duration_s=10..20:5"), ["10", "15", "20"]);
         assert_eq!(parse("x=0.1..0.3:0.1"), ["0.1", "0.2", "0.3"]);
         assert_eq!(parse("x=1..2:0.4"), ["1", "1.4", "1.8"]);
+    }
+
+    #[test]
+    fn keys_take_the_errors_indices_and_the_dotted_ones() {
+        for key in ["dampeners[0].gap_m", "dampeners.0.gap_m", "arm.damping_ratios[1]", "payload.grips[1].at_m"] {
+            assert!(check_key(key).is_ok(), "{key}");
+        }
+        for key in ["dampeners[0.gap_m", "dampeners[].gap_m", "a..b", "a b"] {
+            assert!(check_key(key).is_err(), "{key}");
+        }
     }
 
     #[test]
