@@ -29,7 +29,7 @@ robot = "../../../robots/pipe_arm.urdf"
 {payload}
 
 [drive]
-profile = "trapezoidal"
+kind = "trapezoidal"
 start_deg = 0.0
 end_deg = 90.0
 duration_s = 15.0
@@ -55,13 +55,13 @@ law = { kind = "hunt-crossley", stiffness = 7.5e6, exponent = 1.0, restitution =
 
 
 def trapezoid(t):
-    return f'profile = "trapezoidal"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = {t}\nramp_fraction = 0.2'
+    return f'kind = "trapezoidal"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = {t}\nramp_fraction = 0.2'
 
 
 DRIVES = {
-    "uniform": 'profile = "uniform"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = 15.0',
+    "uniform": 'kind = "uniform"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = 15.0',
     "trapezoidal": trapezoid(15.0),
-    "s-curve": 'profile = "s-curve"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = 15.0\nramp_fraction = 0.2\njerk_fraction = 0.5',
+    "s-curve": 'kind = "s-curve"\nstart_deg = 0.0\nend_deg = 90.0\nduration_s = 15.0\nramp_fraction = 0.2\njerk_fraction = 0.5',
 }
 
 

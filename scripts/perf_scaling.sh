@@ -11,7 +11,7 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 ROOT=$PWD
 BASE="$TMP/base.toml"
-sed "s#^robot = .*#robot = \"$ROOT/robots/pipe_arm.urdf\"#; s#^method = \"rk4\"#method = \"generalized-alpha\"\nrho_inf = 0.8#" \
+sed "s#^robot = .*#robot = \"$ROOT/robots/pipe_arm.urdf\"#; s#^kind = \"rk4\"#kind = \"generalized-alpha\"\nrho_inf = 0.8#" \
     scenarios/default.toml > "$BASE"
 
 median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR + 1) / 2)]}'; }

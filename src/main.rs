@@ -405,6 +405,7 @@ fn check(
     let mut failed = 0;
     let mut report = Vec::new();
     for path in &scenarios {
+        cli::overrides::note_old_spellings(path);
         let scenario = Scenario::load(path)?;
         let name = scenario.model.name.clone();
         let (summary, _) = run(&scenario.model, model).with_context(|| format!("{}: running", path.display()))?;
@@ -596,7 +597,7 @@ fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
     };
     println!(
         "drive               {}{shaped}: peak rate {:.3} °/s (lift velocity limit {:.3}), peak accel {:.3} °/s²",
-        d.profile, d.peak_rate_deg_s, d.velocity_limit_deg_s, d.peak_accel_deg_s2
+        d.kind, d.peak_rate_deg_s, d.velocity_limit_deg_s, d.peak_accel_deg_s2
     );
     if !d.torque_within_effort {
         println!(

@@ -385,8 +385,9 @@ impl StructureShape {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactOptions {
-    /// `compliant` (the pad's force law, implicit in the arm step) or `rapier`.
-    #[serde(default)]
+    /// `compliant` (the pad's force law, implicit in the arm step) or `rapier` (the key `kind`;
+    /// `method` is its old spelling).
+    #[serde(default, rename = "kind")]
     pub method: ContactMethod,
     /// Where the `compliant` method finds its contact points: `pipeline` (rapier's collision
     /// pipeline, every manifold point), `pad-face` (each pad's face against the arm's, no query)

@@ -272,8 +272,9 @@ impl SensorSummary {
 /// known only after it, so a run beyond the joint's effort is flagged here, not stopped.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct DriveLimits {
-    /// The drive's profile (`uniform`, `trapezoidal`, `s-curve`, `hold`, `spin-up`, `table`).
-    pub profile: String,
+    /// The drive's kind (`uniform`, `trapezoidal`, `s-curve`, `hold`, `spin-up`, `table`), as
+    /// the scenario's `drive.kind` names it.
+    pub kind: String,
     /// Its peak rate, deg/s.
     pub peak_rate_deg_s: f64,
     /// Its peak acceleration, deg/s².
@@ -297,7 +298,7 @@ impl DriveLimits {
     pub fn of(model: &Model, peak_drive_torque_n_m: f64) -> Self {
         let (motion, lift) = (&model.drive.motion, &model.robot.lift);
         DriveLimits {
-            profile: motion.name().into(),
+            kind: motion.name().into(),
             peak_rate_deg_s: motion.peak_rate_rad_s().to_degrees(),
             peak_accel_deg_s2: motion.peak_accel_rad_s2().to_degrees(),
             velocity_limit_deg_s: lift.velocity_rad_s.to_degrees(),

@@ -8,6 +8,7 @@
 
 mod actuator;
 mod drive;
+pub mod spelling;
 mod strikes;
 
 use std::path::{Path, PathBuf};
@@ -27,6 +28,17 @@ use crate::sensor::{Sensor, SensorKind, SensorSpec};
 pub use actuator::ActuatorSpec;
 pub use drive::DriveSpec;
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
+
+/// A scenario file as a TOML document, its old spellings rewritten to the current ones.
+pub fn read_document(path: &Path) -> Result<toml::Table, ScenarioError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
+    let mut document: toml::Table = text.parse().map_err(|e: toml::de::Error| ScenarioError::Parse {
+        path: path.into(),
+        message: drive::parse_hint(e.to_string()),
+    })?;
+    spelling::modernize(&mut document);
+    Ok(document)
+}
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
 pub fn scenario_files(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
@@ -229,11 +241,28 @@ impl Scenario {
         Self::from_spec(path, Self::read_spec(path)?)
     }
 
-    /// Reads a scenario file as written, before its checks (to edit it first).
+    /// Reads a scenario file as written, before its checks (to edit it first), its old
+    /// spellings read as the current ones ([`spelling`]).
     pub fn read_spec(path: &Path) -> Result<ScenarioSpec, ScenarioError> {
         let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        toml::from_str(&text)
-            .map_err(|e| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) })
+        let parse =
+            |e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) };
+        let mut document: toml::Table = text.parse().map_err(parse)?;
+        if spelling::modernize(&mut document).is_empty() {
+            // From the text, so that an error shows the line it is on.
+            toml::from_str(&text).map_err(parse)
+        } else {
+            toml::Value::Table(document).try_into().map_err(parse)
+        }
+    }
+
+    /// The old spellings a scenario file uses, as [`spelling::Deprecation`]s to report.
+    pub fn deprecations(path: &Path) -> Result<Vec<spelling::Deprecation>, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
+        let mut document: toml::Table = text
+            .parse()
+            .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
+        Ok(spelling::modernize(&mut document))
     }
 
     /// Checks and resolves a spec as if read from `path` (robot paths resolve against its folder).

@@ -100,8 +100,8 @@ fn scenario_errors_name_file_key_and_range() {
     assert!(m.contains("drive.ramp_fraction"), "{m}");
     let m = load_error("both-limits", |t| t.replace("ramp_fraction = 0.2", "ramp_fraction = 0.2\naccel_deg_s2 = 3.0"));
     assert!(m.contains("drive.limit") && m.contains("exactly one"), "{m}");
-    let generalized_alpha = |rho: &str| format!("method = \"generalized-alpha\"\nrho_inf = {rho}");
-    let m = load_error("integrator", |t| t.replace("method = \"rk4\"", &generalized_alpha("1.5")));
+    let generalized_alpha = |rho: &str| format!("kind = \"generalized-alpha\"\nrho_inf = {rho}");
+    let m = load_error("integrator", |t| t.replace("kind = \"rk4\"", &generalized_alpha("1.5")));
     assert!(m.contains("integrator") && m.contains("rho_inf"), "{m}");
     // Controlled free steps: a tolerance needs a free step, a free step an implicit method.
     let m = load_error("tolerance", |t| t.replace("step_s = 0.003", "step_s = 0.003\ntolerance_m = 1e-6"));
@@ -109,7 +109,7 @@ fn scenario_errors_name_file_key_and_range() {
     let m = load_error("free-explicit", |t| t.replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01"));
     assert!(m.contains("time.free_step_s") && m.contains("implicit"), "{m}");
     let m = load_error("bad-tolerance", |t| {
-        t.replace("method = \"rk4\"", &generalized_alpha("0.8"))
+        t.replace("kind = \"rk4\"", &generalized_alpha("0.8"))
             .replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01\ntolerance_m = -1.0")
     });
     assert!(m.contains("time.tolerance_m") && m.contains("0 < tolerance_m"), "{m}");
@@ -227,7 +227,7 @@ fn actuator_tables_are_checked_naming_the_key() {
     let m = refused_run(
         "free-step",
         |t| {
-            t.replace("method = \"rk4\"", "method = \"generalized-alpha\"\nrho_inf = 0.8")
+            t.replace("kind = \"rk4\"", "kind = \"generalized-alpha\"\nrho_inf = 0.8")
                 .replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01")
                 + HYDRAULIC
         },
@@ -290,9 +290,9 @@ fn an_actuator_too_weak_or_too_slow_for_the_drive_is_named() {
 /// frequency, a known name, a lift longer than the shaper.
 #[test]
 fn shaper_keys_are_checked_naming_the_key() {
-    let hold = "profile = \"hold\"\nangle_deg = 0.0\nshaper = \"zv\"\n";
+    let hold = "kind = \"hold\"\nangle_deg = 0.0\nshaper = \"zv\"\n";
     let m = load_error("shaper-hold", |t| {
-        let start = t.find("profile = ").unwrap();
+        let start = t.find("kind = \"trapezoidal\"").unwrap();
         let end = t.find("ramp_fraction = 0.2\n").unwrap() + "ramp_fraction = 0.2\n".len();
         format!("{}{hold}{}", &t[..start], &t[end..])
     });
@@ -382,11 +382,11 @@ fn a_bad_structure_is_named() {
     // Structures with the rapier method, or with the pad-face path.
     let with_method = |line: &'static str| {
         let structure = guide(boxed, clear, law);
-        move |t: String| t.replace("method = \"compliant\"", line) + &structure
+        move |t: String| t.replace("kind = \"compliant\"", line) + &structure
     };
-    let e = refused_run("structure-rapier", with_method("method = \"rapier\""), same);
-    assert!(e.contains("key `contact.method`") && e.contains("[[structures]]"), "{e}");
-    let e = refused_run("structure-pad-face", with_method("method = \"compliant\"\ndetection = \"pad-face\""), same);
+    let e = refused_run("structure-rapier", with_method("kind = \"rapier\""), same);
+    assert!(e.contains("key `contact.kind`") && e.contains("[[structures]]"), "{e}");
+    let e = refused_run("structure-pad-face", with_method("kind = \"compliant\"\ndetection = \"pad-face\""), same);
     assert!(e.contains("key `contact.detection`") && e.contains("[[structures]]"), "{e}");
     // A negative size.
     let e =

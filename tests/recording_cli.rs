@@ -129,3 +129,37 @@ fn run_and_check_take_their_overrides_through_the_scenarios_checks() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(!out.status.success() && stdout.contains("model") && stdout.contains("modal(2)"), "{stdout}");
 }
+
+/// One spelling per idea: `kind` chooses the variant in every table. A scenario written with the
+/// old spellings (`[drive] profile`, `[integrator] method`, `[contact] method`) runs the same,
+/// with a note naming each old key and the key it was read as.
+#[test]
+fn old_spellings_run_the_same_with_a_note() {
+    let dir = scratch("old-spellings");
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("scenarios/default.toml")).unwrap();
+    let old = text
+        .replace("kind = \"trapezoidal\"", "profile = \"trapezoidal\"")
+        .replace("kind = \"rk4\"", "method = \"rk4\"")
+        .replace("kind = \"compliant\"", "method = \"compliant\"")
+        .replace("../robots/", &format!("{}/robots/", root.display()));
+    let path = dir.join("old.toml");
+    std::fs::write(&path, old).unwrap();
+    let old_run = pipearm(&["run", path.to_str().unwrap(), "--no-record"]);
+    let new_run = pipearm(&["run", "scenarios/default.toml", "--no-record"]);
+    let stderr = String::from_utf8_lossy(&old_run.stderr);
+    assert!(old_run.status.success(), "{stderr}");
+    for (old, new) in
+        [("drive.profile", "drive.kind"), ("integrator.method", "integrator.kind"), ("contact.method", "contact.kind")]
+    {
+        assert!(stderr.contains(&format!("`{old}` is the old spelling of `{new}`")), "{stderr}");
+    }
+    let peak = |out: &Output| {
+        let text = String::from_utf8_lossy(&out.stdout).into_owned();
+        text.lines().find(|l| l.starts_with("contact arm")).map(str::to_string).unwrap_or_default()
+    };
+    assert_eq!(peak(&old_run), peak(&new_run));
+    assert!(!peak(&new_run).is_empty());
+    std::fs::remove_dir_all(&dir).ok();
+}

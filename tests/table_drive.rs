@@ -249,7 +249,7 @@ fn a_torque_beyond_the_joint_effort_is_flagged() {
     let (summary, _) = run(&model, None).unwrap();
     assert!(rel(summary.peak_drive_torque_n_m, 320.0) < 0.05, "{}", summary.peak_drive_torque_n_m);
     assert!(!flagged(&summary));
-    assert_eq!((summary.drive.profile.as_str(), summary.drive.effort_n_m), ("table", 1000.0));
+    assert_eq!((summary.drive.kind.as_str(), summary.drive.effort_n_m), ("table", 1000.0));
     assert!(rel(summary.drive.peak_rate_deg_s, 6.0_f64.to_degrees()) < 1e-9);
     model.robot.lift.effort_n_m = 300.0;
     let (summary, _) = run(&model, None).unwrap();

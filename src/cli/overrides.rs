@@ -15,7 +15,7 @@ pub struct Overrides {
     #[arg(long, value_name = "SECONDS")]
     pub step: Option<f64>,
     /// Override the integrator: rk4, generalized-alpha, newmark, hht, symplectic-euler,
-    /// explicit-euler (`[integrator] method`, with its parameters' defaults).
+    /// explicit-euler (`[integrator] kind`, with its parameters' defaults).
     #[arg(long, value_name = "METHOD")]
     pub integrator: Option<String>,
 }
@@ -23,6 +23,7 @@ pub struct Overrides {
 impl Overrides {
     /// The scenario at `path` with these overrides.
     pub fn load(&self, path: &Path) -> Result<Scenario> {
+        note_old_spellings(path);
         let mut spec = Scenario::read_spec(path)?;
         if let Some(step) = self.step {
             if !(step.is_finite() && step > 0.0) {
@@ -31,10 +32,17 @@ impl Overrides {
             spec.time.step_s = step;
         }
         if let Some(method) = &self.integrator {
-            spec.integrator = toml::from_str(&format!("method = \"{method}\""))
-                .with_context(|| format!("--integrator = {method}"))?;
+            spec.integrator =
+                toml::from_str(&format!("kind = \"{method}\"")).with_context(|| format!("--integrator = {method}"))?;
         }
         Ok(Scenario::from_spec(path, spec)?)
+    }
+}
+
+/// Prints, on stderr, each old spelling a scenario file uses and the key it is read as.
+pub fn note_old_spellings(path: &Path) {
+    for old in Scenario::deprecations(path).unwrap_or_default() {
+        eprintln!("note: {}: {old}", path.display());
     }
 }
 

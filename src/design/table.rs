@@ -130,7 +130,7 @@ fn drive_table(evaluator: &Evaluator, profile: &str, shaper: Option<&str>) -> Re
         })
     };
     let mut table = toml::Table::new();
-    table.insert("profile".into(), profile.into());
+    table.insert("kind".into(), profile.into());
     for key in ["start_deg", "end_deg", "duration_s"] {
         table.insert(key.into(), number(key)?.into());
     }

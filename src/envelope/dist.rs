@@ -531,8 +531,8 @@ mod tests {
     fn each_bad_form_names_the_argument_and_the_rule() {
         let cases = [
             ("pad.gap_m", "no `=`"),
-            ("pad gap=uniform:0..1", "not a dotted path"),
-            ("a..b=uniform:0..1", "not a dotted path"),
+            ("pad gap=uniform:0..1", "not a path of names and indices"),
+            ("a..b=uniform:0..1", "not a path of names and indices"),
             ("a=uniform 0..1", "no `:`"),
             ("a=lognormal:0,1", "unknown distribution `lognormal`"),
             ("a=uniform:1..1", "A < B"),

@@ -167,7 +167,7 @@ pub trait Integrator: Send {
 
 /// The integrators a scenario can name, with their parameters.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "method", rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum IntegratorKind {
     /// Chung–Hulbert generalized-α with spectral radius at infinity `rho_inf` ∈ [0, 1] (default
     /// [`DEFAULT_RHO_INF`] where a scenario leaves it out).
@@ -299,9 +299,9 @@ mod tests {
     /// Every parameter with a documented default takes it where a scenario leaves it out.
     #[test]
     fn newmark_and_hht_default_their_parameters() {
-        let newmark: IntegratorKind = toml::from_str("method = \"newmark\"").unwrap();
+        let newmark: IntegratorKind = toml::from_str("kind = \"newmark\"").unwrap();
         assert_eq!(newmark, IntegratorKind::Newmark { beta: 0.25, gamma: 0.5 });
-        let hht: IntegratorKind = toml::from_str("method = \"hht\"").unwrap();
+        let hht: IntegratorKind = toml::from_str("kind = \"hht\"").unwrap();
         assert_eq!(hht, IntegratorKind::Hht { alpha: -0.05 });
     }
 
@@ -309,10 +309,10 @@ mod tests {
     /// printed is the one a scenario writes.
     #[test]
     fn generalized_alpha_defaults_its_rho_inf_and_prints_as_written() {
-        let kind: IntegratorKind = toml::from_str("method = \"generalized-alpha\"").unwrap();
+        let kind: IntegratorKind = toml::from_str("kind = \"generalized-alpha\"").unwrap();
         assert_eq!(kind, IntegratorKind::GeneralizedAlpha { rho_inf: 0.8 });
         assert_eq!(kind.to_string(), "generalized-alpha (rho_inf 0.8)");
-        let rk4: IntegratorKind = toml::from_str("method = \"rk4\"").unwrap();
+        let rk4: IntegratorKind = toml::from_str("kind = \"rk4\"").unwrap();
         assert_eq!(rk4.to_string(), "rk4");
     }
 }

@@ -283,7 +283,7 @@ impl Check<'_> {
             return Ok(());
         }
         let fastest = poles.iter().map(|p| p.norm()).fold(0.0, f64::max);
-        let implicit = "or integrator.method = \"generalized-alpha\" (stable at any step)";
+        let implicit = "or integrator.kind = \"generalized-alpha\" (stable at any step)";
         let remedy = if stable_h > 0.0 {
             format!(
                 "allowed step_s <= {:.3e} s ({STEP_MARGIN} of the longest stable step), {implicit}",

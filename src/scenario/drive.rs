@@ -13,7 +13,7 @@ use crate::select;
 
 /// Hub motion profiles; angles in degrees.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "profile", rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
 pub enum DriveSpec {
     /// Constant rate from start to end.
     Uniform {

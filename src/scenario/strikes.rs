@@ -140,7 +140,7 @@ impl Check<'_> {
     ) -> Result<Vec<Structure>, ScenarioError> {
         if !specs.is_empty() && contact.method == ContactMethod::Rapier {
             let message = "the rapier method models pads only: allowed \"compliant\" with [[structures]]";
-            return Err(self.invalid("contact.method", message));
+            return Err(self.invalid("contact.kind", message));
         }
         if !specs.is_empty() && contact.detection == Detection::PadFace {
             let message = "pad-face sees pads only: allowed \"pipeline\" or \"auto\" with [[structures]]";

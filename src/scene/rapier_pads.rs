@@ -1,4 +1,4 @@
-//! `contact.method = "rapier"`: each pad is a rapier body of its own mass on its spring, struck
+//! `contact.kind = "rapier"`: each pad is a rapier body of its own mass on its spring, struck
 //! by the arm's shapes (kinematic bodies posed from the arm's state) in rapier's world.
 //!
 //! Coupled so that it is stable at the scene's own step:
@@ -38,7 +38,7 @@ pub fn rapier_pad_spring(dampener: &Dampener) -> Result<(f64, f64), (&'static st
     let ForceLaw::Linear { stiffness_n_m, damping_n_s_m } = dampener.law else {
         return Err((
             "law",
-            "contact.method = \"rapier\" models the pad as a linear spring: allowed law kind = \"linear\"".into(),
+            "contact.kind = \"rapier\" models the pad as a linear spring: allowed law kind = \"linear\"".into(),
         ));
     };
     Ok((stiffness_n_m, damping_n_s_m))
@@ -132,7 +132,7 @@ impl RapierPads {
         for pad in &pads {
             let dampener = pad.dampener().ok_or_else(|| UnsupportedPad {
                 name: pad.obstacle.name().into(),
-                key: "contact.method",
+                key: "contact.kind",
                 message: "the rapier method models pads only: allowed method \"compliant\" with structures".into(),
             })?;
             let (stiffness_n_m, damping_n_s_m) = rapier_pad_spring(dampener)
@@ -274,7 +274,7 @@ impl ContactSource for RapierPads {
         Some(format!(
             "the rapier method hands the pad body's inertia ({:.3} kg) to the arm one step late, stable while it is \
              light against the arm's effective mass at the pad: use a lighter contact.pad_mass_kg, or \
-             contact.method = \"compliant\"",
+             contact.kind = \"compliant\"",
             self.pad_mass_kg
         ))
     }

@@ -127,10 +127,7 @@ pub fn spec_of(path: &Path, document: toml::Value) -> Result<ScenarioSpec, Scena
 
 /// The scenario file at `path` as a TOML document.
 pub fn read_document(path: &Path) -> Result<toml::Value, ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-    text.parse::<toml::Table>()
-        .map(toml::Value::Table)
-        .map_err(|e| ScenarioError::Parse { path: path.into(), message: e.to_string() })
+    crate::scenario::read_document(path).map(toml::Value::Table)
 }
 
 fn duplicate_key(vary: &[Vary]) -> Option<String> {
@@ -197,7 +194,8 @@ pub fn dotted_key(key: &str) -> String {
 /// Sets `key` (`a.b[0].c`) in `document`; every segment but the last must exist (an index
 /// picks from an array). The error message says what does exist there.
 pub fn set_key(document: &mut toml::Value, key: &str, value: toml::Value) -> Result<(), String> {
-    let segments: Vec<&str> = key_segments(key);
+    let key = crate::scenario::spelling::modern_key(key);
+    let segments: Vec<&str> = key_segments(&key);
     let (last, parents) = segments.split_last().expect("split gives at least one segment");
     let mut node = document;
     for (depth, segment) in parents.iter().enumerate() {
