@@ -117,36 +117,31 @@ fn the_summary_reference_lists_every_field_a_run_writes() {
     println!("listed but not written by these four runs (optional fields): {stale:?}");
 }
 
-fn rust_sources() -> String {
-    let mut text = String::new();
-    let mut stack = vec![root().join("src")];
+/// Every file under `dir` whose name ends with `.{ext}`.
+fn files_under(dir: PathBuf, ext: &str) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    let mut stack = vec![dir];
     while let Some(dir) = stack.pop() {
         for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
             if path.is_dir() {
                 stack.push(path);
-            } else if path.extension().is_some_and(|e| e == "rs") {
-                text += &std::fs::read_to_string(path).unwrap();
+            } else if path.extension().is_some_and(|e| e == ext) {
+                files.push(path);
             }
         }
     }
-    text
+    files
+}
+
+fn rust_sources() -> String {
+    files_under(root().join("src"), "rs").into_iter().map(|p| std::fs::read_to_string(p).unwrap()).collect()
 }
 
 /// Every Markdown file of the README and docs/.
 fn markdown_files() -> Vec<PathBuf> {
     let mut files = vec![root().join("README.md"), root().join("robots/README.md")];
-    let mut stack = vec![root().join("docs")];
-    while let Some(dir) = stack.pop() {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                stack.push(path);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                files.push(path);
-            }
-        }
-    }
+    files.extend(files_under(root().join("docs"), "md"));
     files
 }
 

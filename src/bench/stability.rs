@@ -189,10 +189,21 @@ pub fn scene_limit(
     hi: f64,
     iterations: usize,
 ) -> Result<Limit, SceneError> {
+    runs_within(model, fidelity, (lo, hi, iterations), |s, h| s.time.step_s = h)
+}
+
+/// Bisects (in log) for the largest value `set` may put into the model (between `lo` and `hi`)
+/// at which the scene runs to its end without the divergence guard stopping it.
+fn runs_within(
+    model: &Model,
+    fidelity: Fidelity,
+    (lo, hi, iterations): (f64, f64, usize),
+    set: impl Fn(&mut Model, f64),
+) -> Result<Limit, SceneError> {
     let mut error = None;
-    let limit = bisect(lo, hi, iterations, |h| {
+    let limit = bisect(lo, hi, iterations, |value| {
         let mut s = model.clone();
-        s.time.step_s = h;
+        set(&mut s, value);
         match run_with(&s, &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() }) {
             Ok(_) => true,
             Err(SceneError::Diverged { .. }) => false,
@@ -202,10 +213,7 @@ pub fn scene_limit(
             }
         }
     });
-    match error {
-        Some(e) => Err(e),
-        None => Ok(limit),
-    }
+    error.map_or(Ok(limit), Err)
 }
 
 /// The stability map of a scene.
@@ -293,20 +301,7 @@ pub fn map(
 
 /// The largest pad body mass (kg) at which the `rapier` scene runs to its end at its step.
 fn heaviest_pad(model: &Model, fidelity: Fidelity, iterations: usize) -> Result<Limit, SceneError> {
-    let mut error = None;
-    let limit = bisect(1.0, 1e5, iterations, |mass| {
-        let mut s = model.clone();
-        s.contact.pad_mass_kg = mass;
-        match run_with(&s, &RunOptions { fidelity: Some(fidelity), ..RunOptions::default() }) {
-            Ok(_) => true,
-            Err(SceneError::Diverged { .. }) => false,
-            Err(e) => {
-                error.get_or_insert(e);
-                false
-            }
-        }
-    });
-    error.map_or(Ok(limit), Err)
+    runs_within(model, fidelity, (1.0, 1e5, iterations), |s, mass| s.contact.pad_mass_kg = mass)
 }
 
 /// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings over a range of
