@@ -324,7 +324,7 @@ impl Face {
 /// A rubber pad placed against the arm at a stop.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dampener {
-    /// Its name (the contact pair is reported as `arm–<name>`).
+    /// Its name (the contact pair is reported as `arm-<name>`).
     pub name: String,
     /// Lift angle of the stop the pad is set against, rad.
     pub angle_rad: f64,
@@ -348,7 +348,7 @@ pub struct Dampener {
 /// the catwalk): its shape, the force law of its face and its friction.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Structure {
-    /// Its name (contact pairs are reported as `arm–<name>` and `string–<name>`).
+    /// Its name (contact pairs are reported as `arm-<name>` and `string-<name>`).
     pub name: String,
     /// Its shape, centred on `position_m`.
     pub shape: StructureShape,

@@ -134,7 +134,7 @@ pub struct SlipSummary {
 /// Per contact pair: its peak force, impulse and impacts.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PairSummary {
-    /// `arm–<pad>`.
+    /// `arm-<pad>`.
     pub pair: String,
     /// Largest force, N.
     pub peak_force_n: f64,

@@ -133,7 +133,7 @@ fn a_rigid_arm_swung_into_a_structure_follows_the_closed_form() {
     let mut peak = (0.0_f64, 0.0_f64);
     for _ in 0..5000 {
         scene.step(2e-5).unwrap();
-        let pair = scene.pairs().find(|p| p.name == "arm–block").unwrap();
+        let pair = scene.pairs().find(|p| p.name == "arm-block").unwrap();
         if pair.force_n > peak.0 {
             peak = (pair.force_n, pair.station_m);
         }
@@ -155,9 +155,9 @@ fn the_guide_holds_the_string_as_a_cantilever_from_its_hand() {
     let (summary, series) = run(&s, None).unwrap();
     let names = s.pair_series_names();
     let k = names.iter().position(|n| n == "string-well_guide").unwrap();
-    let pair = summary.pairs.iter().find(|p| p.pair == "string–well_guide").unwrap();
+    let pair = summary.pairs.iter().find(|p| p.pair == "string-well_guide").unwrap();
     assert!(pair.impact_count >= 1 && pair.peak_force_n > 0.0);
-    let arm_guide = summary.pairs.iter().find(|p| p.pair == "arm–well_guide").unwrap();
+    let arm_guide = summary.pairs.iter().find(|p| p.pair == "arm-well_guide").unwrap();
     assert_eq!(arm_guide.impact_count, 0, "the arm passes clear of the guide");
     let final_force = *series.pad_force_n[k].last().unwrap();
     let held = s.payload.string().unwrap();

@@ -52,7 +52,7 @@ fn init_writes_a_starter_project_that_runs_and_blesses() {
     let stdout = succeeds(&pipearm_in(parent, &["init", dir.to_str().unwrap()]), "init");
     assert!(stdout.contains("pipearm run"), "{stdout}");
     let stdout = succeeds(&pipearm_in(&dir, &["run", "--no-record"]), "run in the new project");
-    assert!(stdout.contains("contact arm–vertical_stop"), "{stdout}");
+    assert!(stdout.contains("contact arm-vertical_stop"), "{stdout}");
     succeeds(&pipearm_in(&dir, &["check", "--bless"]), "bless");
     assert!(dir.join("tests/baselines/default.toml").exists());
     succeeds(&pipearm_in(&dir, &["check"]), "check against its own baselines");

@@ -48,7 +48,7 @@ fn a_ten_percent_stiffer_pad_fails_the_check() {
     };
     *stiffness *= 1.1;
     let failed = failures(&s, "default");
-    assert!(failed.contains(&"arm–vertical_stop.peak_force_n".to_string()), "{failed:?}");
+    assert!(failed.contains(&"arm-vertical_stop.peak_force_n".to_string()), "{failed:?}");
 }
 
 #[test]
@@ -58,7 +58,7 @@ fn a_heavier_string_fails_the_check() {
     string.size = "4-1/2".into();
     let s = Scenario::from_spec(&s.path, s.spec).unwrap();
     let failed = failures(&s, "default");
-    assert!(failed.contains(&"arm–vertical_stop.peak_force_n".to_string()), "{failed:?}");
+    assert!(failed.contains(&"arm-vertical_stop.peak_force_n".to_string()), "{failed:?}");
     assert!(failed.contains(&"max_tip_deflection_m".to_string()), "{failed:?}");
 }
 

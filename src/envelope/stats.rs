@@ -44,7 +44,7 @@ impl Percentiles {
 /// One pair's peak force over a group.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PairEnvelope {
-    /// `arm–<pad>`.
+    /// `arm-<pad>`.
     pub pair: String,
     /// Its peak force, N.
     pub peak_force_n: Percentiles,

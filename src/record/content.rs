@@ -61,7 +61,7 @@ fn recording_name(run: &Recorded) -> String {
     }
 }
 
-/// A contact pair's label (`arm–<pad>`) and impacts: the summary's, or for a diverged run those
+/// A contact pair's label (`arm-<pad>`) and impacts: the summary's, or for a diverged run those
 /// of its force series so far.
 type Pair = (String, Vec<Impact>);
 
@@ -75,7 +75,7 @@ fn pairs(run: &Recorded) -> Vec<Pair> {
             .map(|(name, forces)| {
                 let mut tracker = ImpactTracker::default();
                 run.series.t_s.iter().zip(forces).for_each(|(t, f)| tracker.push(*t, *f));
-                (format!("arm–{name}"), tracker.impacts())
+                (super::pair_name(name), tracker.impacts())
             })
             .collect(),
     }

@@ -68,11 +68,13 @@ pub enum RecordError {
 /// Entity path of a contact pair's force series, from its series name
 /// ([`crate::model::Model::pair_series_names`]: `<pad>`, `<structure>` or `string-<structure>`).
 pub fn force_entity(series_name: &str) -> String {
-    if series_name.starts_with("string-") {
-        format!("plots/contact_force/{series_name}")
-    } else {
-        format!("plots/contact_force/arm-{series_name}")
-    }
+    format!("plots/contact_force/{}", pair_name(series_name))
+}
+
+/// A contact pair's name, `<side>-<obstacle>` as the summary gives it, from its series name
+/// (`<pad>` or `<structure>` for the arm's pairs, `string-<structure>` for the string's).
+pub fn pair_name(series_name: &str) -> String {
+    if series_name.starts_with("string-") { series_name.to_string() } else { format!("arm-{series_name}") }
 }
 
 /// Entity path of the magnified centreline.

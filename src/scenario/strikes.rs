@@ -30,7 +30,7 @@ const MAX_SIZE_M: f64 = 50.0;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct DampenerSpec {
-    /// Name of the pad (the contact pair is reported as `arm–<name>`).
+    /// Name of the pad (the contact pair is reported as `arm-<name>`).
     pub name: String,
     /// Lift angle of the stop the pad is set against, deg.
     pub angle_deg: f64,
@@ -54,7 +54,7 @@ pub struct DampenerSpec {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct StructureSpec {
-    /// Its name (pairs are reported as `arm–<name>` and `string–<name>`).
+    /// Its name (pairs are reported as `arm-<name>` and `string-<name>`).
     pub name: String,
     /// Its shape.
     pub shape: ShapeSpec,

@@ -83,7 +83,7 @@ pub struct PointReading {
 /// A body of the machine against an obstacle, and its state at the end of the last step.
 #[derive(Debug, Clone)]
 pub struct ContactPair {
-    /// `<side>–<obstacle>`, as reported.
+    /// `<side>-<obstacle>`, as reported.
     pub name: String,
     /// The machine's body.
     pub side: Side,
@@ -148,7 +148,7 @@ impl ContactPair {
         pad: Option<PadPlacement>,
     ) -> Self {
         ContactPair {
-            name: format!("{}–{}", side.name(), obstacle.name()),
+            name: format!("{}-{}", side.name(), obstacle.name()),
             side,
             obstacle,
             pose,
