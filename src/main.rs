@@ -37,6 +37,7 @@ enum Command {
     /// Simulate a scenario; write recordings/<name>.rrd and recordings/<name>.summary.json (and
     /// with --csv the series as tables) and print the summary. A run the divergence guard stops
     /// writes recordings/<name>.diverged.rrd, up to the divergence, and no summary.
+    #[command(after_help = cli::help::RUN)]
     Run {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
@@ -70,6 +71,7 @@ enum Command {
         csv: bool,
     },
     /// Run scenarios and compare them with their regression baselines.
+    #[command(after_help = cli::help::CHECK)]
     Check {
         /// Scenario files (default: every scenarios/*.toml).
         scenarios: Vec<PathBuf>,
@@ -93,6 +95,7 @@ enum Command {
     },
     /// Run the seed paper's experiment families (scenarios/seed/), in parallel: a chart, a table
     /// and one recording per variant.
+    #[command(after_help = cli::help::SEED)]
     Seed {
         /// Section to run (e.g. 3.1.1-drive); all if omitted.
         section: Option<String>,
@@ -106,6 +109,7 @@ enum Command {
     /// Speed against accuracy: run a grid of models, steps, integrators, contact methods and
     /// clamp modes against a converged reference; write a CSV, a chart (SVG, PNG), the stability
     /// map and a Markdown report per scenario under <out>/<name>/.
+    #[command(after_help = cli::help::BENCH)]
     Bench {
         /// Scenario files (default: the project's scenarios/default.toml).
         scenarios: Vec<PathBuf>,
@@ -182,11 +186,13 @@ enum Command {
     },
     /// Write a starter project into DIR (a scenario and the robot it names, an empty baselines
     /// folder): `cd DIR && pipearm run` then runs.
+    #[command(after_help = cli::help::INIT)]
     Init {
         /// The folder (created if need be; refused if it already holds scenarios/ or robots/).
         dir: PathBuf,
     },
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
+    #[command(after_help = cli::help::MODES)]
     Modes {
         /// Scenario file whose arm (robot + payload) to analyse.
         #[arg(default_value = "scenarios/default.toml")]

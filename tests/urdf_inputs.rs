@@ -41,6 +41,11 @@ fn the_shipped_robots_load() {
     assert_eq!(jaws, 24.0);
     // The lift joint's limit, as the file states it: effort 400000 N·m, velocity 0.3 rad/s.
     assert_eq!((robot.lift.effort_n_m, robot.lift.velocity_rad_s), (400000.0, 0.3));
+    // A section written in the snake_case of older files is the same arm.
+    let old = edited_robot("snake-section", |t| t.replace("hollow-rectangle", "hollow_rectangle"));
+    let old_robot = load_robot(&old).unwrap();
+    std::fs::remove_file(&old).ok();
+    assert_eq!(old_robot.arm, robot.arm);
 }
 
 /// The full-scale arm's cylinder and servo, as sized in robots/README.md ("Drives"): checked
@@ -192,8 +197,8 @@ fn malformed_urdf_is_named() {
         ),
         (
             "section-kind",
-            Box::new(|t: String| t.replace("section=\"hollow_rectangle\"", "section=\"i_beam\"")),
-            &["i_beam", "solid_circle"],
+            Box::new(|t: String| t.replace("section=\"hollow-rectangle\"", "section=\"i_beam\"")),
+            &["i_beam", "solid-circle"],
         ),
         ("thick-wall", Box::new(|t: String| t.replace("wall_m=\"0.0125\"", "wall_m=\"0.2\"")), &["wall_m", "0.125"]),
         (

@@ -13,7 +13,7 @@ use pipearm::sweep::{Shard, Vary};
 
 /// `pipearm envelope`: its arguments, or `merge DIR`.
 #[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true, after_help = super::help::ENVELOPE)]
 pub struct EnvelopeArgs {
     #[command(subcommand)]
     command: Option<EnvelopeCommand>,

@@ -2,6 +2,7 @@
 
 pub mod design;
 pub mod envelope;
+pub mod help;
 pub mod measured;
 pub mod overrides;
 pub mod project;

@@ -7,7 +7,7 @@ use clap::Subcommand;
 
 /// `pipearm sweep`: its arguments, or `merge DIR`, or `chart DIR... --out FILE`.
 #[derive(clap::Args)]
-#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true, after_help = super::help::SWEEP)]
 pub struct SweepArgs {
     #[command(subcommand)]
     command: Option<SweepCommand>,

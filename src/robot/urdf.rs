@@ -17,7 +17,7 @@
 //!   <link name="arm" pipearm:flexible="true">
 //!     <pipearm:flexible elements="24" damping_ratios="0.01" hub_inertia_kg_m2="50">
 //!       <pipearm:segment length_m="9" youngs_modulus_pa="2.06e11" density_kg_m3="7850"
-//!                        section="hollow_rectangle" width_m="0.25" depth_m="0.5" wall_m="0.0125"/>
+//!                        section="hollow-rectangle" width_m="0.25" depth_m="0.5" wall_m="0.0125"/>
 //!     </pipearm:flexible>
 //!   </link>
 //! ```
@@ -30,6 +30,9 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
 use crate::actuator::{Cylinder, ServoMachine};
 use crate::beam::{BeamModel, Material, SectionShape};
+
+/// The arm's section shapes, as a URDF names them.
+const SECTIONS: &str = "solid-circle, solid-rectangle, hollow-rectangle, tube";
 
 /// Namespace of pipearm's URDF extensions.
 pub const PIPEARM_NS: &str = "https://pipearm.dev/urdf/1";
@@ -122,22 +125,19 @@ impl Context<'_> {
             return Err(self
                 .invalid(key, format!("unexpected element <{}>: allowed <pipearm:segment>", node.tag_name().name())));
         }
-        let kind = node.attribute("section").ok_or_else(|| {
-            self.invalid(
-                format!("{key}@section"),
-                "missing: allowed solid_circle, solid_rectangle, hollow_rectangle, tube",
-            )
-        })?;
+        let written = node
+            .attribute("section")
+            .ok_or_else(|| self.invalid(format!("{key}@section"), format!("missing: allowed {SECTIONS}")))?;
+        // Kebab-case, as every value in a scenario; the snake_case of older files is read too.
+        let kind = written.replace('_', "-");
+        let kind = kind.as_str();
         let dims: &[&str] = match kind {
-            "solid_circle" => &["diameter_m"],
-            "solid_rectangle" => &["width_m", "depth_m"],
-            "hollow_rectangle" => &["width_m", "depth_m", "wall_m"],
+            "solid-circle" => &["diameter_m"],
+            "solid-rectangle" => &["width_m", "depth_m"],
+            "hollow-rectangle" => &["width_m", "depth_m", "wall_m"],
             "tube" => &["outer_diameter_m", "wall_m"],
-            other => {
-                return Err(self.invalid(
-                    format!("{key}@section"),
-                    format!("`{other}`: allowed solid_circle, solid_rectangle, hollow_rectangle, tube"),
-                ));
+            _ => {
+                return Err(self.invalid(format!("{key}@section"), format!("`{written}`: allowed {SECTIONS}")));
             }
         };
         let mut allowed = vec!["section", "length_m", "youngs_modulus_pa", "density_kg_m3"];
@@ -145,9 +145,9 @@ impl Context<'_> {
         self.only_attributes(node, key, &allowed)?;
         let n = |name| self.number(node, key, name);
         let section = match kind {
-            "solid_circle" => SectionShape::SolidCircle { diameter_m: n("diameter_m")? },
-            "solid_rectangle" => SectionShape::SolidRectangle { width_m: n("width_m")?, depth_m: n("depth_m")? },
-            "hollow_rectangle" => {
+            "solid-circle" => SectionShape::SolidCircle { diameter_m: n("diameter_m")? },
+            "solid-rectangle" => SectionShape::SolidRectangle { width_m: n("width_m")?, depth_m: n("depth_m")? },
+            "hollow-rectangle" => {
                 SectionShape::HollowRectangle { width_m: n("width_m")?, depth_m: n("depth_m")?, wall_m: n("wall_m")? }
             }
             _ => SectionShape::Tube { outer_diameter_m: n("outer_diameter_m")?, wall_m: n("wall_m")? },
