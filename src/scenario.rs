@@ -29,15 +29,30 @@ pub use actuator::ActuatorSpec;
 pub use drive::DriveSpec;
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
+/// A scenario file as written, and as a TOML document with its old spellings rewritten to the
+/// current ones, with the rewrites made.
+struct ReadFile {
+    text: String,
+    document: toml::Table,
+    deprecations: Vec<spelling::Deprecation>,
+}
+
+impl ReadFile {
+    fn read(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
+        let mut document: toml::Table = text.parse().map_err(|e| parse_error(path, e))?;
+        let deprecations = spelling::modernize(&mut document);
+        Ok(ReadFile { text, document, deprecations })
+    }
+}
+
+fn parse_error(path: &Path, e: toml::de::Error) -> ScenarioError {
+    ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) }
+}
+
 /// A scenario file as a TOML document, its old spellings rewritten to the current ones.
 pub fn read_document(path: &Path) -> Result<toml::Table, ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-    let mut document: toml::Table = text.parse().map_err(|e: toml::de::Error| ScenarioError::Parse {
-        path: path.into(),
-        message: drive::parse_hint(e.to_string()),
-    })?;
-    spelling::modernize(&mut document);
-    Ok(document)
+    ReadFile::read(path).map(|file| file.document)
 }
 
 /// The scenario files in `dir` (`*.toml`, hidden ones left out), sorted.
@@ -244,25 +259,18 @@ impl Scenario {
     /// Reads a scenario file as written, before its checks (to edit it first), its old
     /// spellings read as the current ones ([`spelling`]).
     pub fn read_spec(path: &Path) -> Result<ScenarioSpec, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        let parse =
-            |e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: drive::parse_hint(e.to_string()) };
-        let mut document: toml::Table = text.parse().map_err(parse)?;
-        if spelling::modernize(&mut document).is_empty() {
+        let file = ReadFile::read(path)?;
+        if file.deprecations.is_empty() {
             // From the text, so that an error shows the line it is on.
-            toml::from_str(&text).map_err(parse)
+            toml::from_str(&file.text).map_err(|e| parse_error(path, e))
         } else {
-            toml::Value::Table(document).try_into().map_err(parse)
+            toml::Value::Table(file.document).try_into().map_err(|e| parse_error(path, e))
         }
     }
 
     /// The old spellings a scenario file uses, as [`spelling::Deprecation`]s to report.
     pub fn deprecations(path: &Path) -> Result<Vec<spelling::Deprecation>, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io { path: path.into(), source })?;
-        let mut document: toml::Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| ScenarioError::Parse { path: path.into(), message: e.to_string() })?;
-        Ok(spelling::modernize(&mut document))
+        ReadFile::read(path).map(|file| file.deprecations)
     }
 
     /// Checks and resolves a spec as if read from `path` (robot paths resolve against its folder).

@@ -208,6 +208,18 @@ impl ArmView<'_> {
         pose_piece(piece, &self.hub, self.q, self.pivot_m)
     }
 
+    /// How far ahead a contact must be seen over a step of `h_s`: three times the travel of the
+    /// arm's fastest point, m.
+    pub fn step_travel_m(&self, h_s: f64) -> f64 {
+        3.0 * self.speed_bound_m_s() * h_s
+    }
+
+    /// The reach a contact detection looks ahead over a step of `h_s`: [`Self::step_travel_m`],
+    /// at least 2 mm, m.
+    pub fn contact_reach_m(&self, h_s: f64) -> f64 {
+        self.step_travel_m(h_s).max(2e-3)
+    }
+
     /// A bound on any arm point's speed: the hub's rotation at the tip (plus a metre) plus the
     /// tip's elastic speed, m/s.
     pub fn speed_bound_m_s(&self) -> f64 {

@@ -29,11 +29,6 @@ impl PadFaces {
         PadFaces { pads, impact_speed_m_s }
     }
 
-    /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
-    fn reach_m(arm: &ArmView, h_s: f64) -> f64 {
-        (3.0 * arm.speed_bound_m_s() * h_s).max(2e-3)
-    }
-
     /// Pad `i`'s two contacts, if the arm's face is within `reach` of either end.
     fn contacts(&mut self, i: usize, arm: &ArmView, reach: f64, contacts: &mut Vec<ArmContact>) {
         let pair = &self.pads[i];
@@ -58,7 +53,7 @@ impl ContactSource for PadFaces {
         if self.allows_free_step(arm, h_s) {
             return;
         }
-        let reach = Self::reach_m(arm, h_s);
+        let reach = arm.contact_reach_m(h_s);
         for i in 0..self.pads.len() {
             self.contacts(i, arm, reach, contacts);
         }
@@ -73,9 +68,7 @@ impl ContactSource for PadFaces {
     }
 
     fn allows_free_step(&self, arm: &ArmView, h_s: f64) -> bool {
-        // Three times the travel of the arm's fastest point over the step.
-        let travel_m = 3.0 * arm.speed_bound_m_s() * h_s;
-        !self.pads.iter().any(|p| p.within_reach(arm, travel_m))
+        ContactPair::none_within_reach(&self.pads, arm, h_s)
     }
 
     fn fault(&self) -> Option<String> {

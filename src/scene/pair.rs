@@ -191,6 +191,13 @@ impl ContactPair {
             .any(|p| p.shape.compute_aabb(&arm.pose(p)).intersects(&obstacle))
     }
 
+    /// Whether no pair of `pairs` can be touched within a step of `h_s` (the step may then be a
+    /// free one, and detection skipped).
+    pub fn none_within_reach(pairs: &[ContactPair], arm: &ArmView, h_s: f64) -> bool {
+        let travel_m = arm.step_travel_m(h_s);
+        !pairs.iter().any(|p| p.within_reach(arm, travel_m))
+    }
+
     /// The arm's effective mass at a pad's station along the arm's normal with the hub held,
     /// 1 / (rᵀ M⁻¹ r), kg, given M⁻¹ (`None`: a structure, or no elastic coordinates).
     pub fn effective_mass_kg(&self, mass_inverse: Option<&nalgebra::DMatrix<f64>>) -> Option<f64> {

@@ -143,11 +143,6 @@ impl PipelineContacts {
         PipelineContacts { world, pairs, pieces, impact_speed_m_s, found: Vec::new() }
     }
 
-    /// How far ahead a contact must be seen: the arm's fastest closing during a step, with margin.
-    fn reach_m(arm: &ArmView, h_s: f64) -> f64 {
-        (3.0 * arm.speed_bound_m_s() * h_s).max(2e-3)
-    }
-
     /// Poses the pieces and runs rapier's broad and narrow phases with `reach_m` of prediction.
     fn detect(&mut self, arm: &ArmView, reach_m: f64) {
         for (piece, collider) in arm.pieces.iter().zip(&self.pieces) {
@@ -223,7 +218,7 @@ impl ContactSource for PipelineContacts {
         if self.allows_free_step(arm, h_s) {
             return;
         }
-        let reach = Self::reach_m(arm, h_s);
+        let reach = arm.contact_reach_m(h_s);
         self.detect(arm, reach);
         self.collect(arm, reach);
         let mut count = vec![0usize; self.pairs.len()];
@@ -260,9 +255,7 @@ impl ContactSource for PipelineContacts {
     }
 
     fn allows_free_step(&self, arm: &ArmView, h_s: f64) -> bool {
-        // Three times the travel of the arm's fastest point over the step.
-        let travel_m = 3.0 * arm.speed_bound_m_s() * h_s;
-        !self.pairs.iter().any(|p| p.within_reach(arm, travel_m))
+        ContactPair::none_within_reach(&self.pairs, arm, h_s)
     }
 
     fn fault(&self) -> Option<String> {
