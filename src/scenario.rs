@@ -632,21 +632,13 @@ impl Check<'_> {
     }
 
     fn clamp(&self, held: &HeldString, robot: &Robot) -> Result<(), ScenarioError> {
-        if held.friction_clamp().is_some() {
-            if held.grips.len() > 1 {
-                return Err(self.invalid(
-                    "payload.grips",
-                    "a friction clamp holds the string in one hand's jaws: give one grip (`at`)",
-                ));
-            }
-            if matches!(held.model, Some(Fidelity::Modal { .. } | Fidelity::Fe)) {
-                return Err(self.invalid(
-                    "payload.model",
-                    "a friction-clamped string is rigid (its slip rides on a rigid proxy): allowed rigid or auto",
-                ));
-            }
-        }
         let Some(clamp) = held.friction_clamp() else { return Ok(()) };
+        if held.grips.len() > 1 {
+            return Err(self.invalid(
+                "payload.grips",
+                "a friction clamp holds the string in one hand's jaws: give one grip (`at`)",
+            ));
+        }
         let mu = clamp.friction_coefficient;
         if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
             return Err(self.invalid("payload.friction_coefficient", format!("{mu} is outside 0 < μ <= 2")));

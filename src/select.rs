@@ -181,9 +181,6 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
     if let Some(fidelity) = held.model {
         return choice(fidelity, "set in the scenario");
     }
-    if held.friction_clamp().is_some() {
-        return choice(Fidelity::Rigid, "a friction-clamped string slips as a rigid body");
-    }
     let mut beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
     let arm_modes = beam.modes()?;
     let string_hz = beam.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();

@@ -107,7 +107,7 @@ fn the_strings_auto_is_rigid_exactly_where_a_rigid_string_is_within_one_percent(
     let mut scenes = vec![("pup joint, no pad", pup), ("default, no pad", no_pad)];
     for path in shipped() {
         let model = Scenario::load(&path).unwrap().model;
-        if model.payload.string().is_some_and(|h| h.model.is_none() && h.friction_clamp().is_none()) {
+        if model.payload.string().is_some_and(|h| h.model.is_none()) {
             scenes.push((Box::leak(model.name.clone().into_boxed_str()), model));
         }
     }

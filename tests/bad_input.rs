@@ -347,7 +347,7 @@ fn grips_off_the_string_beyond_the_arm_or_on_one_another_are_named() {
         |r: String| r.replace("<origin xyz=\"6.0 0 0\" rpy=\"0 0 0\"/>", "<origin xyz=\"9.6 0 0\" rpy=\"0 0 0\"/>");
     let e = refused_run("grip-beyond", same, beyond);
     assert!(e.contains("hand") && e.contains("9.6"), "{e}");
-    // A flexible string in a friction clamp, and a strain gauge on an arm carrying one.
+    // A friction clamp on a string in two hands, and too many string modes.
     let e =
         refused_run("grip-friction", |t| t.replace("size = \"2-7/8\"", "size = \"2-7/8\"\nclamp = \"friction\""), same);
     assert!(e.contains("payload.grips") && e.contains("one grip"), "{e}");

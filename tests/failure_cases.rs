@@ -95,7 +95,7 @@ fn a_coarse_step_misses_the_peak_under_the_stiffest_dampener() {
 #[test]
 fn the_friction_clamps_jaws_stay_at_the_strings_surface_where_they_used_to_sink_through() {
     let mut s = implicit("default");
-    // One hand's jaws hold the string at its middle, lumped (a friction clamp's string is).
+    // One hand's jaws hold the string at its middle, lumped (the case that failed).
     let held = s.payload.string_mut().unwrap();
     held.in_one_hand("gripper", 9.0);
     held.model = Some(Fidelity::Rigid);

@@ -225,7 +225,8 @@ fn clamp_markdown(runs: &[super::stability::ClampRun]) -> String {
             }
             ClampOutcome::Diverged { t_s } => format!("diverged at {t_s:.3} s | — | —"),
         };
-        let _ = writeln!(out, "| {} in ({:.0} kg) | {} | {} | {row} |", r.size, r.string_kg, r.model, ms(r.step_s));
+        let (size, kg, string) = (&r.size, r.string_kg, r.string);
+        let _ = writeln!(out, "| {size} in ({kg:.0} kg), {string} | {} | {} | {row} |", r.model, ms(r.step_s));
     }
     out
 }

@@ -304,10 +304,10 @@ fn heaviest_pad(model: &Model, fidelity: Fidelity, iterations: usize) -> Result<
     runs_within(model, fidelity, (1.0, 1e5, iterations), |s, mass| s.contact.pad_mass_kg = mass)
 }
 
-/// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings over a range of
-/// steps, at the bench's auto model and at eight modes, under generalized-α (so that a divergence
-/// is the clamp's coupling, not an explicit scene integrator's limit on the arm): whether each
-/// run holds, and its slip.
+/// The friction clamp (the palm's jaws alone) with the 121 kg and 200 kg strings at the
+/// fidelity `auto` gives each in that hand, over a range of steps, at the bench's auto model and
+/// at eight modes, under generalized-α (so that a divergence is the clamp's coupling, not an
+/// explicit scene integrator's limit on the arm): whether each run holds, and its slip.
 fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRun>, SceneError> {
     if model.payload.string().is_none() {
         return Ok(Vec::new());
@@ -331,6 +331,7 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
             held.model = None;
         }
         let string_kg = s.payload.mass_kg();
+        let string = crate::select::string_fidelity(&s)?.fidelity;
         for &model in &models {
             for &f in factors {
                 s.time.step_s = f * h0;
@@ -342,7 +343,7 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
                     Err(SceneError::Diverged { t_s, .. }) => ClampOutcome::Diverged { t_s },
                     Err(e) => return Err(e),
                 };
-                out.push(ClampRun { size: size.into(), string_kg, model, step_s: f * h0, outcome });
+                out.push(ClampRun { size: size.into(), string_kg, string, model, step_s: f * h0, outcome });
             }
         }
     }
@@ -356,6 +357,8 @@ pub struct ClampRun {
     pub size: String,
     /// Its mass, kg.
     pub string_kg: f64,
+    /// Its fidelity (`auto`'s in the one hand).
+    pub string: Fidelity,
     /// Arm model.
     pub model: Fidelity,
     /// Step, s.

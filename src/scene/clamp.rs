@@ -52,6 +52,9 @@ pub struct FrictionGrip {
     pub correction_force_n: [f64; 2],
     /// Squeeze per jaw, N.
     pub squeeze_n: f64,
+    /// Force of the scene's structures on the string (world X, Y), N: its component along the
+    /// arm pushes the string in the jaws over the next step (across the arm the lump carries it).
+    pub string_load_n: [f64; 2],
     /// Each jaw: its body, closing axis in the palm frame and half thickness along it (m).
     jaws: Vec<(RigidBodyHandle, Vector, f64)>,
     /// The string's outer radius, m.
@@ -123,6 +126,7 @@ impl FrictionGrip {
             jaw_sinking_m: 0.0,
             correction_force_n: [0.0; 2],
             squeeze_n,
+            string_load_n: [0.0; 2],
             jaws,
             radius_m: radius,
             length_m: string.length_m,
@@ -156,6 +160,12 @@ impl FrictionGrip {
     /// measures the slip and the force to hand the arm next step.
     pub fn step(&mut self, palm_pose: Pose, h_s: f64) {
         let start = *self.world.bodies[self.palm].position();
+        let along = palm_pose.rotation * Vector::X;
+        let load = Vector::new(self.string_load_n[0], self.string_load_n[1], 0.0);
+        if let Some(string) = self.world.bodies.get_mut(self.string) {
+            string.reset_forces(false);
+            string.add_force(along * along.dot(load), true);
+        }
         let substeps = (h_s / CLAMP_SUBSTEP_S).ceil().max(1.0) as usize;
         self.world.integration_parameters.dt = h_s / substeps as f64;
         for k in 1..=substeps {
@@ -216,6 +226,10 @@ impl ContactSource for FrictionGrip {
     }
 
     fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
         self
     }
 }

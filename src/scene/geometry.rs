@@ -22,6 +22,9 @@ pub struct ArmPiece {
     pub on_string: bool,
     /// Station of the shape's centre, m.
     pub station_m: f64,
+    /// How far it has moved along the arm from its station, m: a friction-clamped string's slip
+    /// (its shapes keep the rows of the material at their station; 0 for everything else).
+    pub axial_shift_m: f64,
     /// Offset of its centre across the arm (body y), m.
     pub lateral_m: f64,
     /// Offset normal to the lift plane (body z), m.
@@ -62,6 +65,7 @@ impl ArmPiece {
             is_arm_element: false,
             on_string: false,
             station_m,
+            axial_shift_m: 0.0,
             lateral_m,
             normal_offset_m,
             local_rotation,
@@ -74,7 +78,8 @@ impl ArmPiece {
     }
 
     /// Station and body-y of a world point on this piece posed at `pose` (the piece moves
-    /// rigidly with the section at its station).
+    /// rigidly with the section at its station): the station of the material there, whose rows
+    /// it moves with; the point itself lies [`Self::axial_shift_m`] further along the arm.
     pub fn station_of(&self, pose: &Pose, world: [f64; 3]) -> (f64, f64) {
         let local = pose.rotation.inverse() * (Vector::new(world[0], world[1], world[2]) - pose.translation);
         // Back into the section frame: undo the piece's own rotation.
@@ -172,7 +177,7 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
 
 /// World pose of a piece from the arm's state: the section at its station carries it rigidly.
 pub fn pose_piece(piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m: [f64; 3]) -> Pose {
-    let x = piece.station_m;
+    let x = piece.station_m + piece.axial_shift_m;
     let [u, v, slope] = piece.rows.displacement(q);
     let y = piece.lateral_m;
     let body = [x + u - y * slope, y + v];

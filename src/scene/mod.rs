@@ -112,10 +112,12 @@ impl Scene {
         }
         let jaw_names: Vec<&str> =
             model.robot.carried.iter().filter(|b| b.mount.is_prismatic()).map(|b| b.name.as_str()).collect();
-        // With a friction clamp, string and jaws are rapier bodies of the clamp's own.
-        let (clamped, riding): (Vec<_>, Vec<_>) = shapes_of_robot(model, &arm.arm.beam)
+        // With a friction clamp, string and jaws are rapier bodies of the clamp's own; the string
+        // also rides on the arm, moved by its slip, where structures strike it.
+        let (clamped, mut riding): (Vec<_>, Vec<_>) = shapes_of_robot(model, &arm.arm.beam)
             .into_iter()
             .partition(|p| friction.is_some() && (p.name == "string" || jaw_names.contains(&p.name.as_str())));
+        riding.extend(clamped.iter().filter(|p| p.name == "string").cloned());
         let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
         let mut pieces = riding;
         let string_normal_offset_m = pieces.iter().find(|p| p.name == "string").map_or(0.0, |p| p.normal_offset_m);
@@ -210,7 +212,21 @@ impl Scene {
         self.arm.contacts = contacts;
         self.arm.step(h_s)?;
         self.advance_and_measure(Some(h_s));
+        self.exchange_with_grip();
         Ok(())
+    }
+
+    /// A friction-clamped string is a shape riding on the arm (struck by structures) and a body
+    /// in the clamp's world (its slip): the structures' force on it goes to the clamp for the
+    /// next step, and its shapes move along the arm by the slip.
+    fn exchange_with_grip(&mut self) {
+        let on_string = self.pairs().filter(|p| p.side == Side::String).flat_map(|p| &p.points);
+        let load = on_string.fold([0.0; 2], |sum, r| [sum[0] + r.force_n[0], sum[1] + r.force_n[1]]);
+        let grip = self.sources.iter_mut().find_map(|s| s.as_any_mut().downcast_mut::<FrictionGrip>());
+        let Some(grip) = grip else { return };
+        grip.string_load_n = load;
+        let slip_m = grip.slip_m;
+        self.pieces.iter_mut().filter(|p| p.name == "string").for_each(|p| p.axial_shift_m = slip_m);
     }
 
     /// Whether the next step may be `free_step_s` long: no source has anything that could begin
@@ -347,7 +363,13 @@ impl Scene {
                 (*x, [u, v])
             })
             .collect();
-        let string_centreline = self.string.as_ref().map(|s| s.centreline_hub_m(&q)).unwrap_or_default();
+        // A friction-clamped string's slip moves it along the arm as a whole, its bending kept.
+        let slip_m = self.grip().map_or(0.0, |g| g.slip_m);
+        let string_centreline = self
+            .string
+            .as_ref()
+            .map(|s| s.centreline_hub_m(&q).into_iter().map(|[x, y]| [x + slip_m, y]).collect())
+            .unwrap_or_default();
         Frame {
             t_s: self.arm.time_s(),
             hub_angle_rad: hub.angle_rad,

@@ -78,4 +78,8 @@ impl ContactSource for PadFaces {
     fn as_any(&self) -> &dyn Any {
         self
     }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
 }

@@ -188,10 +188,10 @@ impl PipelineContacts {
     fn arm_contact(&self, arm: &ArmView, found: &Found, share: f64) -> ArmContact {
         let pair = &self.pairs[found.pair];
         let piece: &ArmPiece = &arm.pieces[found.piece];
-        let (station_m, lateral_m) = piece.station_of(&arm.pose(piece), found.world_m);
+        let (material_m, lateral_m) = piece.station_of(&arm.pose(piece), found.world_m);
         let point = PointContact {
             pair: found.pair,
-            station_m,
+            station_m: material_m + piece.axial_shift_m,
             lateral_m,
             normal_world: found.normal_world,
             depth_m: found.depth_m,
@@ -204,10 +204,10 @@ impl PipelineContacts {
         if piece.is_arm_element {
             arm.arm.arm_contact(point)
         } else if piece.on_string {
-            let rows = arm.arm.string_station_rows(station_m).unwrap_or_else(|| piece.rows.clone());
+            let rows = arm.arm.string_station_rows(material_m).unwrap_or_else(|| piece.rows.clone());
             ArmContact::on_section(point, &rows, 0.0)
         } else {
-            ArmContact::on_section(point, &piece.rows, station_m - piece.station_m)
+            ArmContact::on_section(point, &piece.rows, material_m - piece.station_m)
         }
     }
 }
@@ -263,6 +263,10 @@ impl ContactSource for PipelineContacts {
     }
 
     fn as_any(&self) -> &dyn Any {
+        self
+    }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
         self
     }
 }

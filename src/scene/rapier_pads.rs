@@ -282,4 +282,8 @@ impl ContactSource for RapierPads {
     fn as_any(&self) -> &dyn Any {
         self
     }
+
+    fn as_any_mut(&mut self) -> &mut dyn Any {
+        self
+    }
 }

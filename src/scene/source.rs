@@ -60,4 +60,7 @@ pub trait ContactSource {
 
     /// The source as `Any`, for callers that need its concrete type (the friction clamp's slip).
     fn as_any(&self) -> &dyn Any;
+
+    /// The source as mutable `Any` (the scene hands the friction clamp the structures' load).
+    fn as_any_mut(&mut self) -> &mut dyn Any;
 }
