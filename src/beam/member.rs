@@ -239,7 +239,7 @@ pub(super) fn fixed_interface_modes(
     let n = own.len();
     let k = stiffness.view((own.start, own.start), (n, n)).into_owned();
     let m = mass.view((own.start, own.start), (n, n)).into_owned();
-    super::modes::solve_generalized(&k, &m)
+    super::modes::solve_generalized_in_blocks(&k, &m)
 }
 
 /// The static ride of the member's own DOFs on the arm's: Ψ = −K_ss⁻¹ K_sa (own DOFs × arm DOFs).
