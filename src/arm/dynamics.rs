@@ -4,6 +4,7 @@ use std::cell::{Cell, RefCell};
 
 use nalgebra::{DMatrix, DVector};
 
+use super::products::{add_product, bilinear, dot, product};
 use super::{ArmContact, ArmModel, Energies};
 use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, PinCoupling, Stroke};
 use crate::drive::{DriveState, MotionProfile};
@@ -149,9 +150,10 @@ impl<'a> ArmSystem<'a> {
         (hub, x.rows(1, n).into_owned(), v.rows(1, n).into_owned())
     }
 
-    /// Adds the elastic generalized forces without the θ̈ term and the contacts to `f`
-    /// (allocation-free: it runs several times a step):
-    /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g) q + θ̇² a − g s b_u − g c b_v + Q_q.
+    /// Adds the elastic generalized forces and the hub's known θ̈ = `hub.accel_rad_s2` on C q,
+    /// without θ̈ S and the contacts, to `f` (allocation-free: it runs several times a step):
+    /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g + θ̈ C) q + θ̇² a − g s b_u − g c b_v + Q_q. A free
+    /// hub's θ̈ is unknown here (0 in its state): its mass matrix carries the whole θ̈ S̃.
     fn add_elastic_forces(
         &self,
         hub: &DriveState,
@@ -167,13 +169,14 @@ impl<'a> ArmSystem<'a> {
         // One pass over the five matrices, column by column (their storage order): −K_t q − C_t q̇.
         let matrices = [&a.stiffness, &a.spin_mass, &a.gravity_stiffness, &a.damping, &a.gyroscopic];
         let [k, spin, kg, d, gyro] = matrices.map(|m| m.as_slice());
+        let (w2, two_w, acc) = (w * w, 2.0 * w, hub.accel_rad_s2);
         for j in 0..n {
             let column = j * n..(j + 1) * n;
             let (k, spin, kg) = (&k[column.clone()], &spin[column.clone()], &kg[column.clone()]);
             let (d, gyro) = (&d[column.clone()], &gyro[column]);
             let (qj, qdj) = (qs[j], qds[j]);
             for i in 0..n {
-                f[i] += (w * w * spin[i] + s * kg[i] - k[i]) * qj - (d[i] + 2.0 * w * gyro[i]) * qdj;
+                f[i] += (w2 * spin[i] + s * kg[i] - k[i] - acc * gyro[i]) * qj - (d[i] + two_w * gyro[i]) * qdj;
             }
         }
         let vectors = [&a.axial_moment, &a.axial_mass, &a.transverse_mass, &self.load.modal];
@@ -209,23 +212,42 @@ impl<'a> ArmSystem<'a> {
     fn hub_force_at(
         &self,
         hub: &DriveState,
-        (s, c): (f64, f64),
+        trig: (f64, f64),
         q: &DVector<f64>,
         qd: &DVector<f64>,
         applied_n_m: f64,
         with_contacts: bool,
     ) -> f64 {
-        let a = self.arm;
-        let g = a.options.gravity_m_s2;
-        let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd.as_slice()) + bilinear(&a.spin_mass, qd, q));
-        let contact: f64 =
-            if with_contacts { self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum() } else { 0.0 };
-        applied_n_m + self.load.hub_torque_n_m + contact - spin + self.gravity_moment(s, c, q, g)
+        self.hub_force_with(&self.forms(q, qd), hub, trig, (q, qd), applied_n_m, with_contacts)
     }
 
-    /// Moment of gravity about the pivot on the deformed arm, N·m.
-    fn gravity_moment(&self, s: f64, c: f64, q: &DVector<f64>, g: f64) -> f64 {
-        self.arm.gravity_moment_n_m((s, c), q, g)
+    /// [`Self::hub_force_at`] with the quadratic forms of (q, q̇) given.
+    fn hub_force_with(
+        &self,
+        forms: &Forms,
+        hub: &DriveState,
+        trig: (f64, f64),
+        (q, qd): (&DVector<f64>, &DVector<f64>),
+        applied_n_m: f64,
+        with_contacts: bool,
+    ) -> f64 {
+        let a = self.arm;
+        let g = a.options.gravity_m_s2;
+        let spin = 2.0 * hub.rate_rad_s * (dot(&a.axial_moment, qd.as_slice()) + forms.qd_spin_q);
+        let contact: f64 =
+            if with_contacts { self.contacts.iter().map(|k| k.state(hub, q, qd).moment_n_m).sum() } else { 0.0 };
+        applied_n_m + self.load.hub_torque_n_m + contact - spin + a.gravity_moment_with(trig, q, g, forms.q_kg_q)
+    }
+
+    /// The quadratic forms in (q, q̇) of the hub's equation and the energies, W q multiplied once.
+    fn forms(&self, q: &DVector<f64>, qd: &DVector<f64>) -> Forms {
+        let a = self.arm;
+        let spin_q = product(&a.spin_mass, q);
+        Forms {
+            q_spin_q: dot(&spin_q, q.as_slice()),
+            qd_spin_q: dot(&spin_q, qd.as_slice()),
+            q_kg_q: bilinear(&a.gravity_stiffness, q, q),
+        }
     }
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
@@ -254,48 +276,38 @@ impl<'a> ArmSystem<'a> {
     fn energies_at(
         &self,
         hub: &DriveState,
-        (s, c): (f64, f64),
+        trig: (f64, f64),
         pivot_inertia: f64,
+        q: &DVector<f64>,
+        qd: &DVector<f64>,
+    ) -> Energies {
+        let (coupling_qd, q_kg_q) = (self.coupling_dot(q, qd), bilinear(&self.arm.gravity_stiffness, q, q));
+        self.energies_with(hub, trig, (pivot_inertia, coupling_qd, q_kg_q), q, qd)
+    }
+
+    /// [`Self::energies_at`] with Ĵ(q), S̃·q̇ and qᵀK_g q given.
+    fn energies_with(
+        &self,
+        hub: &DriveState,
+        (s, c): (f64, f64),
+        (pivot_inertia, coupling_qd, q_kg_q): (f64, f64, f64),
         q: &DVector<f64>,
         qd: &DVector<f64>,
     ) -> Energies {
         let a = self.arm;
         let w = hub.rate_rad_s;
-        let kinetic_j = 0.5 * w * w * pivot_inertia + w * self.coupling_dot(q, qd) + 0.5 * bilinear(&a.mass, qd, qd);
+        let kinetic_j = 0.5 * w * w * pivot_inertia + w * coupling_qd + 0.5 * bilinear(&a.mass, qd, qd);
         let g = a.options.gravity_m_s2;
         let gravity_j = g * s * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
             + g * c * dot(&a.transverse_mass, q.as_slice())
-            - 0.5 * s * bilinear(&a.gravity_stiffness, q, q);
+            - 0.5 * s * q_kg_q;
         Energies { kinetic_j, strain_j: 0.5 * bilinear(&a.stiffness, q, q), gravity_j }
     }
 
-    /// Torque the drive applies to realize the hub motion, given q̈, N·m.
-    pub fn drive_torque(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>, qdd: &DVector<f64>) -> f64 {
-        self.drive_torque_at(hub, hub.angle_rad.sin_cos(), self.pivot_inertia(q), q, qd, qdd)
-    }
-
-    fn drive_torque_at(
-        &self,
-        hub: &DriveState,
-        trig: (f64, f64),
-        pivot_inertia: f64,
-        q: &DVector<f64>,
-        qd: &DVector<f64>,
-        qdd: &DVector<f64>,
-    ) -> f64 {
-        match self.drive {
-            HubDrive::Free { torque_n_m } => *torque_n_m,
-            // The actuator's torque depends on its own coordinates: the simulation reports it.
-            HubDrive::Actuated(_) => f64::NAN,
-            HubDrive::Prescribed(_) => {
-                let inertia = pivot_inertia * hub.accel_rad_s2 + self.coupling_dot(q, qdd);
-                inertia - self.hub_force_at(hub, trig, q, qd, 0.0, true)
-            }
-        }
-    }
-
-    /// Drive torque (N·m) and energies (J) together: what every step records, sharing the hub's
-    /// trigonometry `trig` = (sin θ, cos θ) (the caller has it) and Ĵ(q).
+    /// The torque the drive applies to realize the hub motion, given q̈ (N·m), and the energies
+    /// (J) together: what every step records, sharing the hub's
+    /// trigonometry `trig` = (sin θ, cos θ) (the caller has it), Ĵ(q) and the products of q with
+    /// W, C and K_g, each matrix multiplied once (this runs every step).
     pub fn torque_and_energies(
         &self,
         hub: &DriveState,
@@ -304,8 +316,21 @@ impl<'a> ArmSystem<'a> {
         qd: &DVector<f64>,
         qdd: &DVector<f64>,
     ) -> (f64, Energies) {
-        let inertia = self.pivot_inertia(q);
-        (self.drive_torque_at(hub, trig, inertia, q, qd, qdd), self.energies_at(hub, trig, inertia, q, qd))
+        let a = self.arm;
+        let forms = self.forms(q, qd);
+        let inertia = a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q.as_slice()) + forms.q_spin_q;
+        let gyro_q = product(&a.gyroscopic, q);
+        let coupling_dot = |y: &DVector<f64>| dot(&a.coupling, y.as_slice()) + dot(&gyro_q, y.as_slice());
+        let torque_n_m = match self.drive {
+            HubDrive::Free { torque_n_m } => *torque_n_m,
+            // The actuator's torque depends on its own coordinates: the simulation reports it.
+            HubDrive::Actuated(_) => f64::NAN,
+            HubDrive::Prescribed(_) => {
+                inertia * hub.accel_rad_s2 + coupling_dot(qdd)
+                    - self.hub_force_with(&forms, hub, trig, (q, qd), 0.0, true)
+            }
+        };
+        (torque_n_m, self.energies_with(hub, trig, (inertia, coupling_dot(qd), forms.q_kg_q), q, qd))
     }
 }
 
@@ -531,11 +556,10 @@ impl Dynamics for ArmSystem<'_> {
             HubDrive::Prescribed(profile) => {
                 // q = x, q̇ = v: no split, no copies.
                 let (hub, trig) = self.hub.at(profile, t);
-                // −θ̈ S̃ = −θ̈ (S + C q).
+                // −θ̈ S̃ = −θ̈ (S + C q): θ̈ S here, θ̈ C q with the elastic forces.
                 f.copy_from(&self.arm.coupling);
                 *f *= -hub.accel_rad_s2;
                 let f = f.as_mut_slice();
-                add_product(f, -hub.accel_rad_s2, &self.arm.gyroscopic, x.as_slice());
                 self.add_elastic_forces(&hub, trig, x, v, f);
                 self.add_contact_forces(&hub, x, v, None, f);
             }
@@ -631,36 +655,28 @@ impl Dynamics for ArmSystem<'_> {
     }
 }
 
-// Plain loops over the column-major storage: these run several times a step on matrices of a
-// few rows, where nalgebra's general-size kernels spend more on set-up than on arithmetic.
-
-/// xᵀ y.
-pub(super) fn dot(x: &DVector<f64>, y: &[f64]) -> f64 {
-    x.as_slice().iter().zip(y).map(|(a, b)| a * b).sum()
-}
-
-/// xᵀ A y for a square A.
-fn bilinear(a: &DMatrix<f64>, x: &DVector<f64>, y: &DVector<f64>) -> f64 {
-    let x = x.as_slice();
-    let columns = a.as_slice().chunks_exact(x.len().max(1));
-    columns.zip(y.as_slice()).map(|(column, yj)| yj * column.iter().zip(x).map(|(aij, xi)| aij * xi).sum::<f64>()).sum()
-}
-
-/// f += α A x for a square A.
-fn add_product(f: &mut [f64], alpha: f64, a: &DMatrix<f64>, x: &[f64]) {
-    for (column, xj) in a.as_slice().chunks_exact(f.len().max(1)).zip(x) {
-        let scale = alpha * xj;
-        f.iter_mut().zip(column).for_each(|(fi, aij)| *fi += scale * aij);
-    }
+/// The quadratic forms in (q, q̇) the hub's equation and the energies share.
+struct Forms {
+    /// qᵀ W q, kg·m².
+    q_spin_q: f64,
+    /// q̇ᵀ W q, kg·m²/s.
+    qd_spin_q: f64,
+    /// qᵀ K_g q, J.
+    q_kg_q: f64,
 }
 
 impl ArmModel {
     /// Moment of gravity about the pivot on the arm deformed by `q`, with (sin θ, cos θ) of the
     /// hub angle and gravity `g`, N·m.
-    pub(crate) fn gravity_moment_n_m(&self, (s, c): (f64, f64), q: &DVector<f64>, g: f64) -> f64 {
+    pub(crate) fn gravity_moment_n_m(&self, trig: (f64, f64), q: &DVector<f64>, g: f64) -> f64 {
+        self.gravity_moment_with(trig, q, g, bilinear(&self.gravity_stiffness, q, q))
+    }
+
+    /// [`Self::gravity_moment_n_m`] with qᵀK_g q given.
+    fn gravity_moment_with(&self, (s, c): (f64, f64), q: &DVector<f64>, g: f64, q_kg_q: f64) -> f64 {
         let a = self;
         // K_g already carries g; this is −∂/∂θ of −½ g s qᵀK_g q, the foreshortening's potential.
-        let foreshortening = 0.5 * c * bilinear(&a.gravity_stiffness, q, q);
+        let foreshortening = 0.5 * c * q_kg_q;
         -g * c * (a.first_moment_kg_m + dot(&a.axial_mass, q.as_slice()))
             + g * s * dot(&a.transverse_mass, q.as_slice())
             + foreshortening

@@ -24,6 +24,7 @@
 mod contact;
 mod dynamics;
 mod linear;
+mod products;
 mod residual;
 mod sim;
 
@@ -102,7 +103,7 @@ impl StationRows {
     /// [u (m), v (m), φ (rad)] at `q`.
     pub fn displacement(&self, q: &DVector<f64>) -> [f64; 3] {
         // Slices: a few coordinates, called per shape per step.
-        self.0.each_ref().map(|row| dynamics::dot(row, q.as_slice()))
+        self.0.each_ref().map(|row| products::dot(row, q.as_slice()))
     }
 }
 

@@ -4,7 +4,8 @@ use std::borrow::Cow;
 
 use nalgebra::DVector;
 
-use super::dynamics::{ArmPin, HubCache, dot};
+use super::dynamics::{ArmPin, HubCache};
+use super::products::dot;
 use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
 use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant};
 use crate::drive::DriveState;
