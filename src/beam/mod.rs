@@ -268,6 +268,10 @@ pub struct BeamModel {
     ride: Option<DMatrix<f64>>,
     /// The member's fixed-interface modes over its own DOFs (with a member).
     member_modes: Option<ModalBasis>,
+    /// The stiffness's Cholesky factor, once a static displacement has needed it (a run solves
+    /// several, and with a flexible string a factorisation of the whole stiffness costs as much
+    /// as a thousand steps). The matrices are not changed after [`BeamModel::new`].
+    stiffness_factor: std::sync::OnceLock<Option<nalgebra::Cholesky<f64, nalgebra::Dyn>>>,
 }
 
 impl BeamModel {
@@ -303,6 +307,7 @@ impl BeamModel {
             member,
             ride: None,
             member_modes: None,
+            stiffness_factor: std::sync::OnceLock::new(),
         };
         model.assemble_elements();
         model.assemble_member();
@@ -471,7 +476,8 @@ impl BeamModel {
 
     /// Static displacement under a load vector `f` (N and N·m on the DOFs), clamped hub.
     pub fn static_displacement(&self, load: &DVector<f64>) -> Result<DVector<f64>, BeamError> {
-        let chol = self.stiffness.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
+        let factor = self.stiffness_factor.get_or_init(|| self.stiffness.clone().cholesky());
+        let chol = factor.as_ref().ok_or(BeamError::NotPositiveDefinite {
             matrix: "stiffness",
             why: "the clamped arm must be a structure".into(),
         })?;
