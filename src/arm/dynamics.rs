@@ -252,8 +252,13 @@ impl<'a> ArmSystem<'a> {
 
     /// Ĵ(q) = J₀ + 2aᵀq + qᵀWq, kg·m².
     fn pivot_inertia(&self, q: &DVector<f64>) -> f64 {
+        self.pivot_inertia_with(q, bilinear(&self.arm.spin_mass, q, q))
+    }
+
+    /// [`Self::pivot_inertia`] with qᵀWq given.
+    fn pivot_inertia_with(&self, q: &DVector<f64>, q_spin_q: f64) -> f64 {
         let a = self.arm;
-        a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q.as_slice()) + bilinear(&a.spin_mass, q, q)
+        a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q.as_slice()) + q_spin_q
     }
 
     /// S̃ = S + C q.
@@ -268,24 +273,11 @@ impl<'a> ArmSystem<'a> {
 
     /// Kinetic, strain and gravity energy at (hub, q, q̇), J.
     pub fn energies(&self, hub: &DriveState, q: &DVector<f64>, qd: &DVector<f64>) -> Energies {
-        let inertia = self.pivot_inertia(q);
-        self.energies_at(hub, hub.angle_rad.sin_cos(), inertia, q, qd)
+        let quadratic = (self.pivot_inertia(q), self.coupling_dot(q, qd), bilinear(&self.arm.gravity_stiffness, q, q));
+        self.energies_with(hub, hub.angle_rad.sin_cos(), quadratic, q, qd)
     }
 
-    /// [`Self::energies`] with the hub angle's (sin, cos) and Ĵ(q) given.
-    fn energies_at(
-        &self,
-        hub: &DriveState,
-        trig: (f64, f64),
-        pivot_inertia: f64,
-        q: &DVector<f64>,
-        qd: &DVector<f64>,
-    ) -> Energies {
-        let (coupling_qd, q_kg_q) = (self.coupling_dot(q, qd), bilinear(&self.arm.gravity_stiffness, q, q));
-        self.energies_with(hub, trig, (pivot_inertia, coupling_qd, q_kg_q), q, qd)
-    }
-
-    /// [`Self::energies_at`] with Ĵ(q), S̃·q̇ and qᵀK_g q given.
+    /// [`Self::energies`] with the hub angle's (sin, cos), Ĵ(q), S̃·q̇ and qᵀK_g q given.
     fn energies_with(
         &self,
         hub: &DriveState,
@@ -318,7 +310,7 @@ impl<'a> ArmSystem<'a> {
     ) -> (f64, Energies) {
         let a = self.arm;
         let forms = self.forms(q, qd);
-        let inertia = a.pivot_inertia_kg_m2 + 2.0 * dot(&a.axial_moment, q.as_slice()) + forms.q_spin_q;
+        let inertia = self.pivot_inertia_with(q, forms.q_spin_q);
         let gyro_q = product(&a.gyroscopic, q);
         let coupling_dot = |y: &DVector<f64>| dot(&a.coupling, y.as_slice()) + dot(&gyro_q, y.as_slice());
         let torque_n_m = match self.drive {

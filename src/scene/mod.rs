@@ -112,14 +112,14 @@ impl Scene {
         }
         let jaw_names: Vec<&str> =
             model.robot.carried.iter().filter(|b| b.mount.is_prismatic()).map(|b| b.name.as_str()).collect();
-        // With a friction clamp, string and jaws are rapier bodies of the clamp's own; the string
-        // also rides on the arm, moved by its slip, where structures strike it.
-        let (clamped, mut riding): (Vec<_>, Vec<_>) = shapes_of_robot(model, &arm.arm.beam)
+        // With a friction clamp the jaws are rapier bodies of the clamp's own, beside a proxy of
+        // the whole string; the string also rides on the arm, moved by its slip.
+        let mut pieces: Vec<ArmPiece> = shapes_of_robot(model, &arm.arm.beam)
             .into_iter()
-            .partition(|p| friction.is_some() && (p.name == "string" || jaw_names.contains(&p.name.as_str())));
-        riding.extend(clamped.iter().filter(|p| p.name == "string").cloned());
+            .filter(|p| friction.is_none() || !jaw_names.contains(&p.name.as_str()))
+            .collect();
+        let clamped_string = friction.and_then(|_| pieces.iter().find(|p| p.name == "string").cloned());
         let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
-        let mut pieces = riding;
         let string_normal_offset_m = pieces.iter().find(|p| p.name == "string").map_or(0.0, |p| p.normal_offset_m);
         for piece in &mut pieces {
             piece.rows = arm.arm.station_rows(piece.station_m);
@@ -164,7 +164,7 @@ impl Scene {
             })?),
         };
         scene.sources.push(pads);
-        if let (Some(held), Some(string)) = (friction, clamped.iter().find(|p| p.name == "string")) {
+        if let (Some(held), Some(string)) = (friction, clamped_string.as_ref()) {
             let palm_index = scene
                 .pieces
                 .iter()
