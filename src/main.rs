@@ -141,6 +141,7 @@ enum Command {
     Design(cli::design::DesignArgs),
     /// Run a scenario and set it against measured signals (docs/measurements.md): print a table
     /// per signal and write <out>/<name>.compare.json.
+    #[command(after_help = cli::help::COMPARE)]
     Compare {
         /// Scenario file.
         scenario: PathBuf,
@@ -159,9 +160,7 @@ enum Command {
     },
     /// Fit scenario parameters to measured signals (least squares); print them with 95 %
     /// intervals; write <out>/<name>.fit.json and <out>/<name>.fitted.toml.
-    ///
-    /// Example: pipearm fit scenarios/default.toml --measured rig.csv
-    ///   --params arm.damping_ratios.0,dampeners.0.law.stiffness --step 0.001
+    #[command(after_help = cli::help::FIT)]
     Fit {
         /// Scenario file.
         scenario: PathBuf,

@@ -12,7 +12,7 @@ use super::dist::Spread;
 use super::sample::{latin_hypercube, saltelli};
 use crate::scenario::Scenario;
 use crate::sweep::Vary;
-use crate::sweep::plan::{base_document, get_number, set_key, spec_of};
+use crate::sweep::plan::{base_document, dotted_key, get_number, not_a_number, set_key, spec_of};
 
 /// Fewest Saltelli base rows for which the envelope estimates Sobol indices by default: below it
 /// their bootstrap intervals are wider than the indices of a typical ranking.
@@ -178,7 +178,8 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
         return Err(EnvelopeError::Argument("no --spread given: allowed one or more KEY=DIST".into()));
     }
     for (i, s) in spreads.iter().enumerate() {
-        if spreads[..i].iter().any(|t| t.key == s.key) || per.is_some_and(|p| p.key == s.key) {
+        let same = |key: &str| dotted_key(key) == dotted_key(&s.key);
+        if spreads[..i].iter().any(|t| same(&t.key)) || per.is_some_and(|p| same(&p.key)) {
             return Err(EnvelopeError::Argument(format!("--spread `{s}`: `{}` is spread or grouped twice", s.key)));
         }
     }
@@ -187,11 +188,7 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
         if get_number(&document, &spread.key).is_none() {
             return Err(EnvelopeError::Spread {
                 spread: spread.to_string(),
-                message: format!(
-                    "`{}` is not a number in {}: allowed numeric scenario keys",
-                    spread.key,
-                    path.display()
-                ),
+                message: not_a_number(&document, &spread.key, path),
             });
         }
         check_support(path, &document, spread)?;
