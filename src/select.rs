@@ -157,7 +157,7 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
 /// frequency, whatever the scene's band: a string mode that close to the arm's takes part in its
 /// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it
 /// (`pipearm bench`'s `string` axis shows where a rigid string stays within 1 % of the converged
-/// peak force; docs/scene.md).
+/// peak force; docs/fidelity.md).
 pub const STRING_MODE_MARGIN: f64 = 5.0;
 
 /// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped

@@ -38,6 +38,16 @@ use regex::Regex;
 const PLACEHOLDERS: &[(&str, &str)] =
     &[("my.toml", "scenarios/default.toml"), ("/abs/proj", "{root}"), ("~/", "{root}/home/"), ("/tmp/", "{root}/tmp/")];
 
+/// Help examples too heavy for the suite, and the smaller run each stands for here (the pages
+/// say theirs in a `<!-- doc-test: ... -->` marker).
+const HELP_SIZES: &[(&str, &str)] = &[
+    ("pipearm bench --quick", "pipearm bench scenarios/lab.toml --quick --repeats 1"),
+    (
+        "pipearm bench scenarios/default.toml scenarios/lab.toml --out docs/accuracy",
+        "pipearm bench scenarios/lab.toml --quick --repeats 1 --out docs/accuracy",
+    ),
+];
+
 /// Files and folders of the project a scratch copy holds.
 const PROJECT_PARTS: &[&str] = &["scenarios", "robots", "tests/baselines", "docs", "scripts", "measurements"];
 
@@ -50,6 +60,25 @@ struct Shown {
     command: String,
     /// The output lines shown, with their 1-based lines in the page.
     output: Vec<(usize, String)>,
+    /// Whether a `cd` in it carries over to the next command: a walkthrough's shell block does;
+    /// a `$ command` and a help example start where the page is.
+    keeps_folder: bool,
+    /// An edit of a file the page shows as a diff, made instead of running a command.
+    edit: Option<Edit>,
+}
+
+/// A ```diff block marked `<!-- doc-test: edit PATH -->`: each hunk (hunks are split at a ` ...`
+/// line) replaces its context and `-` lines by its context and `+` lines, found once in PATH.
+#[derive(Debug, Clone)]
+struct Edit {
+    path: String,
+    hunks: Vec<(String, String)>,
+}
+
+impl Shown {
+    fn command(page: &str, line: usize, command: String, keeps_folder: bool) -> Self {
+        Shown { page: page.into(), line, command, output: vec![], keeps_folder, edit: None }
+    }
 }
 
 /// One page's commands in order, with the replacements its markers ask for.
@@ -66,7 +95,7 @@ fn fence(line: &str) -> Option<&str> {
 
 /// A shell line that runs pipearm (or `cd`), after `cargo run --release --` is read as pipearm.
 fn runs_pipearm(command: &str) -> bool {
-    let re = Regex::new(r"(^|&&|;|\|)\s*pipearm(\s|$)").unwrap();
+    let re = Regex::new(r"(^|&&|;|\|)\s*(\w+=\S+\s+)*pipearm(\s|$)").unwrap();
     re.is_match(command) || command.starts_with("cd ")
 }
 
@@ -82,12 +111,17 @@ fn parse_page(name: &str, text: &str) -> Page {
     let lines: Vec<&str> = text.lines().collect();
     let mut page = Page { name: name.to_string(), commands: Vec::new() };
     let mut pending: Vec<(String, String)> = Vec::new();
+    let mut edit_of: Option<String> = None;
     let mut last_shell_end: Option<usize> = None;
     let mut i = 0;
     while i < lines.len() {
         let line = lines[i];
         if let Some(rest) = line.trim().strip_prefix("<!-- doc-test:") {
-            pending = markers(rest.trim_end_matches("-->").trim());
+            let rest = rest.trim_end_matches("-->").trim();
+            match rest.strip_prefix("edit ") {
+                Some(path) => edit_of = Some(path.trim().to_string()),
+                None => pending = markers(rest),
+            }
             i += 1;
             continue;
         }
@@ -107,17 +141,17 @@ fn parse_page(name: &str, text: &str) -> Page {
         let replace = std::mem::take(&mut pending);
         let apply = |c: &str| replace.iter().fold(c.to_string(), |c, (a, b)| c.replace(a.as_str(), b.as_str()));
         let dollar = body.iter().any(|(_, l)| l.trim_start().starts_with("$ "));
-        if matches!(info, "sh" | "bash" | "shell") {
+        if let Some(path) = edit_of.take() {
+            let mut edit = Shown::command(name, start + 1, format!("edit {path}"), true);
+            edit.edit = Some(Edit { path, hunks: hunks(&body) });
+            page.commands.push(edit);
+            last_shell_end = None;
+        } else if matches!(info, "sh" | "bash" | "shell") {
             let before = page.commands.len();
             for (line_no, command) in joined(&body) {
                 let command = command.replace("cargo run --release --", "pipearm");
                 if runs_pipearm(&command) {
-                    page.commands.push(Shown {
-                        page: name.into(),
-                        line: line_no,
-                        command: apply(&command),
-                        output: vec![],
-                    });
+                    page.commands.push(Shown::command(name, line_no, apply(&command), true));
                 }
             }
             last_shell_end = (page.commands.len() > before).then_some(page.commands.len());
@@ -127,12 +161,7 @@ fn parse_page(name: &str, text: &str) -> Page {
                 if let Some(command) = l.trim_start().strip_prefix("$ ") {
                     page.commands.extend(current.take());
                     let command = command.replace("cargo run --release --", "pipearm");
-                    current = runs_pipearm(&command).then(|| Shown {
-                        page: name.into(),
-                        line: *line_no,
-                        command: apply(&command),
-                        output: vec![],
-                    });
+                    current = runs_pipearm(&command).then(|| Shown::command(name, *line_no, apply(&command), false));
                 } else if let Some(c) = current.as_mut() {
                     c.output.push((*line_no, l.to_string()));
                 }
@@ -167,6 +196,41 @@ fn joined(body: &[(usize, &str)]) -> Vec<(usize, String)> {
     out
 }
 
+/// A diff block's hunks as (old text, new text), split at its ` ...` lines.
+fn hunks(body: &[(usize, &str)]) -> Vec<(String, String)> {
+    let mut out = vec![(Vec::new(), Vec::new())];
+    for (_, l) in body {
+        let (mark, text) = l.split_at(l.chars().next().map_or(0, char::len_utf8));
+        if text.trim() == "..." {
+            out.push((Vec::new(), Vec::new()));
+            continue;
+        }
+        let (old, new) = out.last_mut().unwrap();
+        match mark {
+            "-" => old.push(text),
+            "+" => new.push(text),
+            _ => {
+                old.push(text);
+                new.push(text);
+            }
+        }
+    }
+    out.into_iter().filter(|(o, n)| o != n).map(|(o, n)| (o.join("\n"), n.join("\n"))).collect()
+}
+
+/// Applies `edit` in `folder`; the error says which hunk was not found once.
+fn apply_edit(edit: &Edit, folder: &Path) -> Result<(), String> {
+    let path = folder.join(&edit.path);
+    let mut text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    for (old, new) in &edit.hunks {
+        match text.matches(old.as_str()).count() {
+            1 => text = text.replacen(old.as_str(), new, 1),
+            n => return Err(format!("{}: the lines\n{old}\nare found {n} times, not once", edit.path)),
+        }
+    }
+    std::fs::write(&path, text).map_err(|e| e.to_string())
+}
+
 /// The help examples of every command, as one page.
 fn help_page(pipearm: &Path) -> Page {
     let help = |args: &[&str]| {
@@ -194,12 +258,8 @@ fn help_page(pipearm: &Path) -> Page {
         let lines: Vec<(usize, &str)> = examples.lines().map(|l| (0, l.trim())).collect();
         for (_, line) in joined(&lines).into_iter().filter(|(_, l)| l.starts_with("pipearm ")) {
             let shown = line.split("  ").next().unwrap().trim().to_string();
-            page.commands.push(Shown {
-                page: format!("pipearm {command} --help"),
-                line: 0,
-                command: shown,
-                output: vec![],
-            });
+            let shown = HELP_SIZES.iter().fold(shown, |c, (from, to)| if c == *from { to.to_string() } else { c });
+            page.commands.push(Shown::command(&format!("pipearm {command} --help"), 0, shown, false));
         }
     }
     page
@@ -236,25 +296,26 @@ fn scratch(tag: &str) -> PathBuf {
     dir
 }
 
-/// `command` with its placeholders mapped into `root`.
+/// `command` with its placeholders mapped into `root`: a path placeholder where a word (or an
+/// option's `=value`) starts with it, a file name where it is the whole word.
 fn mapped(command: &str, root: &Path) -> String {
     let root = root.to_str().unwrap();
-    command
-        .split(' ')
-        .map(|word| {
-            PLACEHOLDERS.iter().fold(word.to_string(), |w, (from, to)| {
-                let to = to.replace("{root}", root);
-                if from.ends_with('/') {
-                    w.replace(from, &to)
-                } else if w == *from {
-                    to
-                } else {
-                    w
-                }
-            })
-        })
-        .collect::<Vec<_>>()
-        .join(" ")
+    let map_word = |word: &str| -> String {
+        let (head, value) = word.split_once('=').map_or(("", word), |(h, v)| (h, v));
+        let eq = if head.is_empty() { "" } else { "=" };
+        for (from, to) in PLACEHOLDERS {
+            let to = to.replace("{root}", root);
+            let is_path = from.starts_with(['/', '~']);
+            if is_path && let Some(rest) = value.strip_prefix(from) {
+                return format!("{head}{eq}{to}{rest}");
+            }
+            if !is_path && value == *from {
+                return format!("{head}{eq}{to}");
+            }
+        }
+        word.to_string()
+    };
+    command.split(' ').map(map_word).collect::<Vec<_>>().join(" ")
 }
 
 struct Ran {
@@ -347,8 +408,9 @@ fn number_agrees(expected: &str, actual: &str) -> bool {
     let (Ok(e), Ok(a)) = (expected.parse::<f64>(), actual.parse::<f64>()) else { return expected == actual };
     let mantissa = expected.split(['e', 'E']).next().unwrap();
     let exponent: i32 = expected.split(['e', 'E']).nth(1).map_or(0, |x| x.parse().unwrap_or(0));
-    let decimals = mantissa.split_once('.').map_or(0, |(_, d)| d.len() as i32);
-    let unit = 10f64.powi(exponent - decimals);
+    // Integers (counts, mode numbers) agree within 1 % only: one unit of a count is a change.
+    let Some((_, decimals)) = mantissa.split_once('.') else { return (a - e).abs() <= 0.01 * e.abs().max(a.abs()) };
+    let unit = 10f64.powi(exponent - decimals.len() as i32);
     (a - e).abs() <= (0.01 * e.abs().max(a.abs())).max(unit * 1.000001)
 }
 
@@ -403,8 +465,23 @@ fn run_page(page: &Page, tag: &str, bin: &Path) -> (Vec<String>, Vec<(String, us
     let mut cwd = root.clone();
     let (mut failures, mut moved) = (Vec::new(), Vec::new());
     for shown in &page.commands {
-        let ran = run(&shown.command, &root, &mut cwd, bin);
         let where_ = if shown.line > 0 { format!("{}:{}", shown.page, shown.line) } else { shown.page.clone() };
+        if let Some(edit) = &shown.edit {
+            if let Err(e) = apply_edit(edit, &cwd) {
+                failures.push(format!("{where_}: the page's edit does not apply: {e}"));
+            }
+            continue;
+        }
+        let mut folder = cwd.clone();
+        let started = std::time::Instant::now();
+        let ran = run(&shown.command, &root, &mut folder, bin);
+        let seconds = started.elapsed().as_secs_f64();
+        if seconds > 20.0 {
+            println!("{where_}: `{}` took {seconds:.0} s", shown.command);
+        }
+        if shown.keeps_folder {
+            cwd = folder;
+        }
         let expects_error = shown.output.iter().any(|(_, l)| l.trim_start().starts_with("Error:"));
         if ran.success == expects_error {
             let what = if expects_error { "succeeded, the page shows it failing" } else { "failed" };
@@ -476,7 +553,9 @@ fn bless(moved: &[(String, usize, String)]) {
 
 #[test]
 fn every_documented_command_runs_and_shows_its_output() {
-    let pipearm = PathBuf::from(env!("CARGO_BIN_EXE_pipearm"));
+    // PIPEARM_DOCS_BIN runs the docs against another build (an installed pipearm, say).
+    let pipearm =
+        std::env::var_os("PIPEARM_DOCS_BIN").map_or(PathBuf::from(env!("CARGO_BIN_EXE_pipearm")), PathBuf::from);
     let bin = pipearm.parent().unwrap().to_path_buf();
     let mut pages = doc_pages();
     pages.push(help_page(&pipearm));
@@ -536,6 +615,7 @@ fn shown_output_is_compared_by_text_with_numbers_in_tolerance() {
     assert!(compare(&shown(&["contact peak [..] 5 impacts", "simulated ..."]), actual).0.is_empty());
     // One unit of the last digit shown: 0.000 % against 0.001 %.
     assert!(number_agrees("0.000", "0.001") && !number_agrees("0.000", "0.003"));
+    assert!(!number_agrees("4", "3") && number_agrees("1000", "1009"));
 }
 
 #[test]
@@ -547,7 +627,24 @@ fn pages_are_parsed_into_commands_outputs_and_markers() {
     );
     let commands: Vec<&str> = page.commands.iter().map(|c| c.command.as_str()).collect();
     assert_eq!(commands, ["cd my_arm", "pipearm run --csv   # tables", "pipearm envelope a.toml --samples 8"]);
-    assert_eq!(page.commands[1].output, [(12, "model modal(3)".to_string())]);
-    assert_eq!(page.commands[2].output, [(18, "  all 1185".to_string())]);
-    assert_eq!(page.commands[1].line, 6);
+    assert_eq!(page.commands[1].output, [(11, "model modal(3)".to_string())]);
+    assert_eq!(page.commands[2].output, [(17, "  all 1185".to_string())]);
+    assert_eq!(page.commands[1].line, 5);
+}
+
+#[test]
+fn a_marked_diff_block_edits_its_file_or_says_why_not() {
+    let page = parse_page(
+        "p.md",
+        "<!-- doc-test: edit a.toml -->\n```diff\n [x]\n-k = 1\n+k = 2\n ...\n-z = 3\n+z = 4\n```\n",
+    );
+    let edit = page.commands[0].edit.clone().expect("an edit");
+    let dir = std::env::temp_dir().join(format!("pipearm-docs-edit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("a.toml"), "[x]\nk = 1\ny = 0\nz = 3\n").unwrap();
+    apply_edit(&edit, &dir).unwrap();
+    assert_eq!(std::fs::read_to_string(dir.join("a.toml")).unwrap(), "[x]\nk = 2\ny = 0\nz = 4\n");
+    // Applied again, its lines are no longer there: the page and the file disagree.
+    assert!(apply_edit(&edit, &dir).unwrap_err().contains("found 0 times"));
+    std::fs::remove_dir_all(&dir).ok();
 }

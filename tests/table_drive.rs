@@ -46,7 +46,7 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-/// The check: a table of the shipped S-curve (the lowering onto the rest pad) at 10 ms
+/// A table of the shipped S-curve (the lowering onto the rest pad) at 10 ms
 /// gives the S-curve run's peak tip deflection within 0.5 % and its peak drive torque within 1 %.
 #[test]
 fn a_table_of_the_s_curve_reproduces_its_run() {

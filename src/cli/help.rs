@@ -45,7 +45,7 @@ pub const DESIGN: &str = "Examples:
 
 pub const COMPARE: &str = "Examples:
   pipearm compare scenarios/default.toml --measured measurements/rig.csv --shift
-  pipearm compare scenarios/default.toml --measured measurements/rig.csv --model fe --out /tmp/cmp";
+  pipearm compare scenarios/default.toml --measured measurements/rig.csv --model 'modal(2)' --out /tmp/cmp";
 
 pub const FIT: &str = "Examples:
   pipearm fit scenarios/default.toml --measured measurements/rig.csv --params 'dampeners[0].law.stiffness' --shift

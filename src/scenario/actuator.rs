@@ -295,7 +295,7 @@ impl Check<'_> {
         Err(self.invalid(
             "time.step_s",
             format!(
-                "{} is explicit and the arm with its drive has poles its step {step} s does not keep in its stability \
+                "{} is explicit and the arm with its actuator has poles its step {step} s does not keep in its stability \
                  region with a margin (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
                 integrator.name(),
                 fastest * step

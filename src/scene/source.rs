@@ -16,8 +16,7 @@
 //!
 //! A new source implements the trait and is added to the scene's list; the step does not change.
 
-use std::any::Any;
-
+use super::clamp::FrictionGrip;
 use super::geometry::ArmView;
 use super::pair::ContactPair;
 use crate::arm::{ArmContact, GeneralizedLoad};
@@ -58,9 +57,15 @@ pub trait ContactSource {
         None
     }
 
-    /// The source as `Any`, for callers that need its concrete type (the friction clamp's slip).
-    fn as_any(&self) -> &dyn Any;
+    /// The friction clamp holding the string, if this source is one (its slip for the summary).
+    fn grip(&self) -> Option<&FrictionGrip> {
+        None
+    }
 
-    /// The source as mutable `Any` (the scene hands the friction clamp the structures' load).
-    fn as_any_mut(&mut self) -> &mut dyn Any;
+    /// Hands a source that holds the string the structures' force on it, N in the hub frame
+    /// (x along the arm, y across it), for its next step; returns the string's slip along the
+    /// arm, m, where this source is the one that integrates it.
+    fn take_string_load(&mut self, _load_n: [f64; 2]) -> Option<f64> {
+        None
+    }
 }
