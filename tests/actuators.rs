@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{model, rel, uniform};
+use common::{ACTUATORS, model, rel, uniform, validated_rel};
 use pipearm::actuator::{
     Actuator, ActuatorPlant, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, ServoMachine,
     Valve,
@@ -101,6 +101,15 @@ fn locked_cylinder_rings_on_its_oil_spring() {
         angle.push(sim.state().x[0]);
     }
     let measured = frequency_rad_s(&angle, h);
+    validated_rel(
+        &ACTUATORS,
+        "rigid arm on a locked cylinder (valve closed), kicked: ringing frequency",
+        expected,
+        "√(r² k / J), k = β (A₁²/V₁ + A₂²/V₂) the oil spring",
+        measured,
+        "rad/s",
+        2e-3,
+    );
     assert!(rel(measured, expected) < 2e-3, "ω {measured} against {expected} rad/s");
 }
 
@@ -139,12 +148,30 @@ fn drive_train_spring_rings_at_the_two_inertia_frequency() {
     let expected = (k / inertia).sqrt();
     let h = std::f64::consts::TAU / expected / 400.0;
     let measured = frequency_rad_s(&twist_after_kick(held, 4000, h), h);
+    validated_rel(
+        &ACTUATORS,
+        "servo drive train (2e6 N·m/rad), rotor held by its inertia (N²J_m = 10⁴ J): twist frequency",
+        expected,
+        "√(k / J)",
+        measured,
+        "rad/s",
+        2e-3,
+    );
     assert!(rel(measured, expected) < 2e-3, "held rotor: ω {measured} against {expected}");
     // A free rotor of N² J_m = 500 kg·m²: ω² = k (1/J + 1/(N² J_m)).
     let free = machine(0.05, k);
     let expected = (k * (1.0 / inertia + 1.0 / free.reflected_inertia_kg_m2())).sqrt();
     let h = std::f64::consts::TAU / expected / 400.0;
     let measured = frequency_rad_s(&twist_after_kick(free, 4000, h), h);
+    validated_rel(
+        &ACTUATORS,
+        "servo drive train, free rotor of N²J_m = 500 kg·m²: twist frequency",
+        expected,
+        "√(k (1/J + 1/N²J_m)), two inertias on a spring",
+        measured,
+        "rad/s",
+        2e-3,
+    );
     assert!(rel(measured, expected) < 2e-3, "free rotor: ω {measured} against {expected}");
 }
 
@@ -172,6 +199,14 @@ fn pd_controlled_arm_follows_the_second_order_step_response() {
             worst = worst.max((sim.state().x[0] - exact).abs());
         }
     }
+    common::validated_row(
+        &ACTUATORS,
+        "PD-controlled rigid arm (ω_n = 2π rad/s, ζ = 0.3), 0.01 rad step, controller at 10 kHz: angle over 3 s",
+        "the second-order step response, with the derivative kick kd Δ",
+        &format!("largest departure {} rad", common::sig(worst, 2)),
+        &common::relative(worst / step_rad),
+        "< 1 % of the step",
+    );
     assert!(worst < 0.01 * step_rad, "largest departure {worst:e} rad from the closed form");
 }
 
@@ -199,6 +234,15 @@ fn open_valve_moves_the_rod_at_the_orifice_law_speed() {
         }
     }
     let mean = speeds.iter().sum::<f64>() / speeds.len() as f64;
+    validated_rel(
+        &ACTUATORS,
+        "valve held half open against a 30 kN rod force: steady rod speed",
+        expected,
+        "orifice law on both lands, ṡ² = (A₁p_s − A₂p_t − F)(Kx)² / (A₁³ + A₂³)",
+        mean,
+        "m/s",
+        5e-3,
+    );
     assert!(rel(mean, expected) < 5e-3, "rod speed {mean} against {expected} m/s");
 }
 
@@ -227,6 +271,17 @@ fn relief_valve_caps_the_chamber_pressure() {
     let displaced = c.cap_area_m2() * c.length_and_arm(0.0).1 * rate;
     let bound = 25e6 * (1.0 + 0.05 * displaced / circuit(25e6).valve.rated_flow_m3_s);
     let relieved = peak_cap_pressure_pa(25e6, rate);
+    common::validated(
+        &ACTUATORS,
+        "locked cylinder kicked at 1.2 rad/s, 25 MPa relief: peak cap-side pressure",
+        &format!(
+            "25 MPa ..= 25 MPa (1 + 0.05 Q/Q_r) = {} MPa (the relief passes Q_r at 5 % override); {} MPa without relief",
+            common::sig(1e-6 * bound, 4),
+            common::sig(1e-6 * unrelieved, 3)
+        ),
+        &format!("{} MPa", common::sig(1e-6 * relieved, 4)),
+        "within the band",
+    );
     assert!((25e6..=bound).contains(&relieved), "relieved peak {relieved:e} Pa, bound {bound:e}");
 }
 
@@ -247,6 +302,15 @@ fn actuator_work_equals_the_arm_energy_gained() {
         last = s;
     }
     let gained = energy(&last) - e0;
+    validated_rel(
+        &ACTUATORS,
+        "rigid arm lifted 0.5 rad by the hydraulic drive, undamped: drive work",
+        gained,
+        "the arm's kinetic + gravity energy gained",
+        work,
+        "J",
+        2e-3,
+    );
     assert!(gained > 1e3, "the arm must be lifted: {gained} J");
     assert!(rel(work, gained) < 2e-3, "work {work} J against energy gained {gained} J");
     // And it tracked the reference: within a degree at the end.
@@ -266,6 +330,15 @@ fn seated_arm_presses_the_pad_with_the_hub_torque_over_its_lever() {
     let first_moment = model.arm_model(Fidelity::Rigid).unwrap().first_moment_kg_m;
     let gravity_moment = -model.physics.gravity_m_s2 * first_moment * angle.cos();
     let lever = model.dampeners[0].station_m;
+    validated_rel(
+        &ACTUATORS,
+        "servo_seated.toml, the arm held 0.3° past the stop: pad force × lever at rest",
+        torque + gravity_moment,
+        "τ_drive + M_gravity, the hub's moment balance",
+        force * lever,
+        "N·m",
+        0.01,
+    );
     assert!(force > 3e3, "the arm must be seated: {force} N");
     assert!(
         rel(force * lever, torque + gravity_moment) < 0.01,

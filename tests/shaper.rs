@@ -3,6 +3,8 @@
 //! curves of ZV and ZVD (Singer & Seering 1990); and the full-scale arm without its pad, where a
 //! ZVD shaper must cut the residual tip vibration of the trapezoidal lift at least fivefold.
 
+mod common;
+
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -57,6 +59,21 @@ fn zv_and_zvd_cancel_the_design_mode() {
         assert!(unshaped > 1e-3, "the base leaves a residual to cancel: {unshaped}");
         for shaper in [Shaper::Zv, Shaper::Zvd] {
             let left = residual_amplitude(&shaped(&base, shaper, 1.0), omega);
+            common::validated_row(
+                &common::DRIVES,
+                &format!(
+                    "{} shaping a {} move for 1 Hz: residual of a 1 Hz undamped mode",
+                    if shaper == Shaper::Zv { "ZV" } else { "ZVD" },
+                    base.name()
+                ),
+                &format!(
+                    "0: the design mode cancelled (Singer & Seering 1990); unshaped {} rad",
+                    common::sig(unshaped, 3)
+                ),
+                &format!("{} rad", common::sig(left, 2)),
+                &format!("{} of the unshaped", common::relative(left / unshaped)),
+                "< 1e-6 of the unshaped",
+            );
             assert!(left < 1e-6 * unshaped, "{shaper:?} on {}: {left} of {unshaped}", base.name());
         }
     }
@@ -67,7 +84,37 @@ fn zv_and_zvd_cancel_the_design_mode() {
 #[test]
 fn off_design_residual_follows_the_textbook_curves() {
     for base in bases() {
-        for r in [0.5, 0.7, 0.8, 0.9, 1.1, 1.2, 1.3, 1.5] {
+        let rs = [0.5, 0.7, 0.8, 0.9, 1.1, 1.2, 1.3, 1.5];
+        let ratios = |shaper: Shaper| -> Vec<f64> {
+            rs.iter()
+                .map(|r| {
+                    let omega = 2.0 * PI * r;
+                    residual_amplitude(&shaped(&base, shaper, 1.0), omega) / residual_amplitude(&base, omega)
+                })
+                .collect()
+        };
+        let cosine: Vec<f64> = rs.iter().map(|r| (0.5 * PI * r).cos().abs()).collect();
+        let squared: Vec<f64> = cosine.iter().map(|c| c * c).collect();
+        let case = |s: &str| format!("{s} for 1 Hz on a {} move: residual over unshaped at r = 0.5 … 1.5", base.name());
+        common::validated_rel_all(
+            &common::DRIVES,
+            &case("ZV"),
+            &cosine,
+            "|cos(πr/2)|, Singer & Seering 1990",
+            &ratios(Shaper::Zv),
+            "",
+            0.01,
+        );
+        common::validated_rel_all(
+            &common::DRIVES,
+            &case("ZVD"),
+            &squared,
+            "cos²(πr/2), Singer & Seering 1990",
+            &ratios(Shaper::Zvd),
+            "",
+            0.01,
+        );
+        for r in rs {
             let omega = 2.0 * PI * r;
             let unshaped = residual_amplitude(&base, omega);
             let zv = residual_amplitude(&shaped(&base, Shaper::Zv, 1.0), omega) / unshaped;
@@ -116,9 +163,25 @@ fn zvd_cuts_the_arms_residual_vibration_fivefold() {
         zvd.drive.shaper_hz,
         plain.residual.frequency_hz
     );
+    common::validated(
+        &common::DRIVES,
+        "default lift without its pad, string lumped: residual tip amplitude with ZVD tuned to the arm's first mode",
+        &format!("at most a fifth of the unshaped trapezoid's {} m", common::sig(a0, 3)),
+        &format!("{} m ({} of it)", common::sig(a1, 3), common::relative(a1 / a0)),
+        "≤ 20 %",
+    );
     assert!(a1 <= 0.2 * a0, "ZVD {a1} m vs unshaped {a0} m");
     assert_eq!(zvd.drive.shaper.as_deref(), Some("zvd"));
     let tuned = zvd.drive.shaper_hz.unwrap();
+    common::validated_rel(
+        &common::DRIVES,
+        "the ZVD shaper's tuning on the default arm",
+        plain.residual.frequency_hz,
+        "the unshaped run's measured residual frequency",
+        tuned,
+        "Hz",
+        0.03,
+    );
     // The tuning is the arm's first mode: the unshaped run's measured residual frequency.
     assert!((tuned - plain.residual.frequency_hz).abs() <= 0.03 * tuned, "{tuned} Hz vs measured");
     assert_eq!((plain.drive.shaper.as_ref(), plain.drive.shaper_hz), (None, None));
