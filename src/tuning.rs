@@ -158,7 +158,7 @@ fn oscillating(eigenvalues: &[Complex<f64>]) -> Vec<Complex<f64>> {
 }
 
 /// Points on the contour around a pole.
-const CONTOUR_POINTS: usize = 16;
+const CONTOUR_POINTS: usize = 8;
 
 /// The residues at `pole` of `c (sI − A)⁻¹ b_k` for every output row `c` and input column `b_k`
 /// (outputs × 3): `(1/2πi) ∮ G(s) ds` on a circle about the pole clear of every other
@@ -173,7 +173,7 @@ fn residues(
     let n = system.a.nrows();
     let nearest =
         eigenvalues.iter().map(|q| (q - pole).norm()).filter(|d| *d > 1e-6 * pole.norm()).fold(f64::INFINITY, f64::min);
-    let radius = (0.1 * nearest).min(1e-3 * pole.norm());
+    let radius = (0.05 * nearest).min(1e-3 * pole.norm());
     let a = system.a.map(|x| Complex::new(x, 0.0));
     let b = system.b.map(|x| Complex::new(x, 0.0));
     let c = DMatrix::from_fn(outputs.len(), n, |o, j| Complex::new(outputs[o][j], 0.0));
@@ -188,38 +188,31 @@ fn residues(
     sum / Complex::new(CONTOUR_POINTS as f64, 0.0)
 }
 
-/// `I(λ) = ∫₀ᵀ e^{λ(T−τ)} θ̇(τ) dτ` over the move's duration T: Gauss–Legendre on each smooth
-/// piece, cut to a quarter of the pole's period.
+/// `I(λ) = ∫₀ᵀ e^{λ(T−τ)} θ̇(τ) dτ` over the move's duration T, in closed form for a move of
+/// constant-jerk pieces between its breakpoints (every kind but the spin-up): on a piece where
+/// θ̇ is a quadratic p, `∫ e^{λ(T−τ)} p dτ = [−e^{λ(T−τ)} (p + p′/λ + p″/λ²)/λ]` between its ends.
 pub fn rate_spectrum(motion: &MotionProfile, pole: Complex<f64>) -> Complex<f64> {
-    const NODES: [f64; 5] =
-        [-0.906_179_845_938_664, -0.538_469_310_105_683, 0.0, 0.538_469_310_105_683, 0.906_179_845_938_664];
-    const WEIGHTS: [f64; 5] = [
-        0.236_926_885_056_189_1,
-        0.478_628_670_499_366_5,
-        0.568_888_888_888_888_9,
-        0.478_628_670_499_366_5,
-        0.236_926_885_056_189_1,
-    ];
     let duration = motion.duration_s();
     let mut points: Vec<f64> = std::iter::once(0.0).chain(motion.breakpoints_s()).filter(|t| *t <= duration).collect();
     points.push(duration);
     points.sort_by(f64::total_cmp);
     points.dedup_by(|later, earlier| *later - *earlier <= 1e-12 * duration);
-    let quarter_period = 0.25 * std::f64::consts::TAU / pole.norm();
-    let mut sum = Complex::new(0.0, 0.0);
-    for piece in points.windows(2) {
-        let (t0, t1) = (piece[0], piece[1]);
-        let cuts = ((t1 - t0) / quarter_period).ceil().max(1.0) as usize;
-        let h = (t1 - t0) / cuts as f64;
-        for cut in 0..cuts {
-            let mid = t0 + (cut as f64 + 0.5) * h;
-            for (x, w) in NODES.iter().zip(WEIGHTS) {
-                let tau = mid + 0.5 * h * x;
-                sum += (pole * (duration - tau)).exp() * (0.5 * h * w * motion.sample(tau).rate_rad_s);
-            }
-        }
-    }
-    sum
+    let primitive = |tau: f64, rate: f64, accel: f64, jerk: f64| {
+        -(pole * (duration - tau)).exp() * (rate + accel / pole + jerk / (pole * pole)) / pole
+    };
+    points
+        .windows(2)
+        .map(|piece| {
+            // The piece's cubic, taken at its midpoint (clear of either breakpoint's rounding) and
+            // carried to its ends.
+            let (t0, t1) = (piece[0], piece[1]);
+            let mid = motion.sample(0.5 * (t0 + t1));
+            let (accel, jerk) = (mid.accel_rad_s2, mid.jerk_rad_s3);
+            let at = |dt: f64| (mid.rate_rad_s + dt * (accel + 0.5 * dt * jerk), accel + dt * jerk);
+            let ((rate0, accel0), (rate1, accel1)) = (at(-0.5 * (t1 - t0)), at(0.5 * (t1 - t0)));
+            primitive(t1, rate1, accel1, jerk) - primitive(t0, rate0, accel0, jerk)
+        })
+        .sum()
 }
 
 #[cfg(test)]
@@ -257,7 +250,15 @@ mod tests {
         // At rest in equilibrium at the start: x = θ(0) for both masses.
         let mut y = DVector::from_vec(vec![start, start, 0.0, 0.0]);
         for piece in bounds.windows(2) {
-            let s = motion.sample(piece[0]);
+            // The piece's cubic from its midpoint, carried back to its start (right limit there).
+            let (mid, back) = (motion.sample(0.5 * (piece[0] + piece[1])), -0.5 * (piece[1] - piece[0]));
+            let j = mid.jerk_rad_s3;
+            let s = crate::drive::DriveState {
+                angle_rad: mid.angle_rad + back * (mid.rate_rad_s + back * (0.5 * mid.accel_rad_s2 + back * j / 6.0)),
+                rate_rad_s: mid.rate_rad_s + back * (mid.accel_rad_s2 + 0.5 * back * j),
+                accel_rad_s2: mid.accel_rad_s2 + back * j,
+                jerk_rad_s3: j,
+            };
             let mut aug = DMatrix::zeros(8, 8);
             aug.view_mut((0, 0), (4, 4)).copy_from(&system.a);
             aug.view_mut((0, 4), (4, 3)).copy_from(&system.b);
@@ -273,32 +274,64 @@ mod tests {
         y
     }
 
-    /// The predicted free vibration after a trapezoidal move matches the exact response of the
-    /// chain (relative to its end equilibrium, x = θ(T)) in displacement and velocity.
+    /// The predicted free vibration after a trapezoidal and an s-curve move matches the exact
+    /// response of the chain (relative to its end equilibrium, x = θ(T)) in displacement and
+    /// velocity.
     #[test]
     fn predicted_residual_is_the_exact_free_vibration() {
         let system = chain();
-        let motion = MotionProfile::trapezoidal(0.0, 1.0, 1.3, TrapezoidLimit::RampFraction(0.3)).unwrap();
-        let end = motion.end_rad();
-        let y_end = exact_state_at_end(&system, &motion);
-        let rows: Vec<DVector<f64>> = (0..4).map(|j| DVector::from_fn(4, |i, _| f64::from(u8::from(i == j)))).collect();
-        let residuals = modal_residuals(&system, &rows, &motion);
-        assert_eq!(residuals.len(), 2);
-        let departure = [y_end[0] - end, y_end[1] - end, y_end[2], y_end[3]];
-        for (j, want) in departure.iter().enumerate() {
-            let got: f64 = residuals.iter().map(|r| 2.0 * r.amplitudes[j].re).sum();
+        let limit = crate::drive::SCurveLimit::Fractions { ramp_fraction: 0.3, jerk_fraction: 0.25 };
+        for motion in [
+            MotionProfile::trapezoidal(0.0, 1.0, 1.3, TrapezoidLimit::RampFraction(0.3)).unwrap(),
+            MotionProfile::s_curve(1.0, -0.5, 1.7, limit).unwrap(),
+        ] {
+            let end = motion.end_rad();
+            let y_end = exact_state_at_end(&system, &motion);
+            let rows: Vec<DVector<f64>> =
+                (0..4).map(|j| DVector::from_fn(4, |i, _| f64::from(u8::from(i == j)))).collect();
+            let residuals = modal_residuals(&system, &rows, &motion);
+            assert_eq!(residuals.len(), 2);
+            let departure = [y_end[0] - end, y_end[1] - end, y_end[2], y_end[3]];
             let scale = departure.iter().map(|d| d.abs()).fold(0.0, f64::max);
-            assert!((got - want).abs() <= 1e-7 * scale, "component {j}: {got} vs {want}");
+            assert!(scale > 1e-3, "{} leaves the chain ringing: {departure:?}", motion.name());
+            for (j, want) in departure.iter().enumerate() {
+                let got: f64 = residuals.iter().map(|r| 2.0 * r.amplitudes[j].re).sum();
+                assert!((got - want).abs() <= 1e-7 * scale, "{} component {j}: {got} vs {want}", motion.name());
+            }
         }
     }
 
-    /// I(λ) of a uniform move (constant rate ω₀ over T): ω₀ (e^{λT} − 1)/λ.
+    /// I(λ) of a uniform move (constant rate ω₀ over T): ω₀ (e^{λT} − 1)/λ; of a trapezoid and an
+    /// s-curve, against composite Simpson on 200 000 intervals.
     #[test]
-    fn rate_spectrum_of_a_uniform_move() {
+    fn rate_spectrum_in_closed_form() {
         let motion = MotionProfile::uniform(0.0, 2.0, 3.0).unwrap();
         let pole = Complex::new(-0.3, 7.0);
         let want = (2.0 / 3.0) * ((pole * 3.0).exp() - 1.0) / pole;
         let got = rate_spectrum(&motion, pole);
-        assert!((got - want).norm() <= 1e-9 * want.norm(), "{got} vs {want}");
+        assert!((got - want).norm() <= 1e-12 * want.norm(), "{got} vs {want}");
+        let limit = crate::drive::SCurveLimit::Fractions { ramp_fraction: 0.3, jerk_fraction: 0.25 };
+        for motion in [
+            MotionProfile::trapezoidal(0.0, 1.5, 4.0, TrapezoidLimit::RampFraction(0.2)).unwrap(),
+            MotionProfile::s_curve(1.5, 0.2, 4.0, limit).unwrap(),
+        ] {
+            let (n, t) = (200_000, motion.duration_s());
+            let h = t / f64::from(n);
+            let f = |k: u32| (pole * (t - h * f64::from(k))).exp() * motion.sample(h * f64::from(k)).rate_rad_s;
+            let simpson: Complex<f64> = (0..=n)
+                .map(|k| {
+                    f(k) * if k == 0 || k == n {
+                        1.0
+                    } else if k % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    }
+                })
+                .sum();
+            let want = simpson * (h / 3.0);
+            let got = rate_spectrum(&motion, pole);
+            assert!((got - want).norm() <= 1e-9 * want.norm(), "{}: {got} vs {want}", motion.name());
+        }
     }
 }
