@@ -34,3 +34,4 @@ pub mod seed;
 pub mod select;
 pub mod sensor;
 pub mod sweep;
+pub mod tuning;

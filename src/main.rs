@@ -596,8 +596,19 @@ fn print_summary(path: &Path, s: &RunSummary) {
 /// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its
 /// effort (the run is not stopped: the drive is ideal, the URDF's effort is the real one's).
 fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
-    let shaped = match (&d.shaper, d.shaper_hz) {
-        (Some(shaper), Some(hz)) => format!(" with a {shaper} shaper at {hz:.3} Hz"),
+    let shaped = match (&d.shaper, &d.shaper_hz) {
+        (Some(shaper), Some(hz)) => {
+            let shares = d.shaper_residual_share.as_deref();
+            let modes: Vec<String> = hz
+                .iter()
+                .enumerate()
+                .map(|(i, f)| match shares.and_then(|s| s.get(i)) {
+                    Some(share) => format!("{f:.3} Hz ({:.0} % of the residual)", 100.0 * share),
+                    None => format!("{f:.3} Hz"),
+                })
+                .collect();
+            format!(" with a {shaper} shaper at {}", modes.join(", "))
+        }
         _ => String::new(),
     };
     println!(

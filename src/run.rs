@@ -288,15 +288,24 @@ pub struct DriveLimits {
     /// The input shaper convolved with the profile (`zv`, `zvd`, `ei`); absent when unshaped.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shaper: Option<String>,
-    /// The natural frequency the shaper is tuned to, Hz; absent when unshaped.
+    /// The natural frequencies the shaper is tuned to, Hz, lowest first; absent when unshaped.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub shaper_hz: Option<f64>,
+    pub shaper_hz: Option<Vec<f64>>,
+    /// The damping ratio of each, as tuned; absent when unshaped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper_damping_ratio: Option<Vec<f64>>,
+    /// Each mode's largest share of an output's residual vibration after the unshaped move
+    /// (0..1), where the tuning found the modes (no `shaper_hz` given); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper_residual_share: Option<Vec<f64>>,
 }
 
 impl DriveLimits {
     /// `model`'s drive against its lift joint, with the run's peak drive torque (N·m).
     pub fn of(model: &Model, peak_drive_torque_n_m: f64) -> Self {
         let (motion, lift) = (&model.drive.motion, &model.robot.lift);
+        let (modes, tuning) = (motion.shaper_modes(), &model.drive.shaper_tuning);
+        let shaped = !modes.is_empty();
         DriveLimits {
             kind: motion.name().into(),
             peak_rate_deg_s: motion.peak_rate_rad_s().to_degrees(),
@@ -305,7 +314,9 @@ impl DriveLimits {
             effort_n_m: lift.effort_n_m,
             torque_within_effort: peak_drive_torque_n_m <= lift.effort_n_m,
             shaper: motion.shaper().map(|s| s.name().into()),
-            shaper_hz: motion.shaper_hz(),
+            shaper_hz: shaped.then(|| modes.iter().map(|m| m.frequency_hz).collect()),
+            shaper_damping_ratio: shaped.then(|| modes.iter().map(|m| m.damping_ratio).collect()),
+            shaper_residual_share: (!tuning.is_empty()).then(|| tuning.iter().map(|m| m.residual_share).collect()),
         }
     }
 }

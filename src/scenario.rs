@@ -26,7 +26,7 @@ use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
-pub use drive::DriveSpec;
+pub use drive::{DriveSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
 /// A scenario file as written, and as a TOML document with its old spellings rewritten to the
@@ -313,7 +313,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator },
+            drive: Drive { motion, actuator, shaper_tuning: Vec::new() },
             dampeners: dampeners?,
             structures,
             contact: spec.contact,
@@ -323,8 +323,8 @@ impl Scenario {
             time: spec.time,
             sensors,
         };
-        if let Some((_, shaper_hz)) = spec.drive.shaping() {
-            model.drive.motion = check.shaped(&spec.drive, shaper_hz, &model)?;
+        if let Some(request) = spec.drive.shaping() {
+            (model.drive.motion, model.drive.shaper_tuning) = check.shaped(&spec.drive, request, &model)?;
         }
         check.model(&model)?;
         check.structures_clear(&model)?;

@@ -1,6 +1,5 @@
-//! The model a scene needs (`model = { kind = "auto" }`, the default), the seed's motion advice
-//! (§4) for the arm's class, and the frequency a shaped drive is tuned to by default
-//! ([`shaper_tuning_hz`]).
+//! The model a scene needs (`model = { kind = "auto" }`, the default) and the seed's motion advice
+//! (§4) for the arm's class. (A shaped drive's modes: [`crate::tuning`].)
 //!
 //! The cheapest fidelity that resolves what the scene excites:
 //! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
@@ -246,20 +245,6 @@ fn oscillating_poles_at_end(
     let mut oscillating: Vec<Complex<f64>> = poles.into_iter().filter(|p| p.im > 0.0).collect();
     oscillating.sort_by(|a, b| a.im.total_cmp(&b.im));
     Some(oscillating)
-}
-
-/// The natural frequency (Hz) an input shaper on the model's drive is tuned to by default: the
-/// first mode of the arm with its payload, linearised at rest at the end of the drive's path
-/// (gravity and stiffening there included) — with a servo or hydraulic actuator the first
-/// coupled arm+drive mode. `|λ| / 2π` of its pole, from a model of the clamped modes up to
-/// [`COUPLED_REFERENCE_MODES`] (the first frequency converges long before). `None` if the arm
-/// cannot be built or linearised, or has no oscillating mode.
-pub fn shaper_tuning_hz(model: &Model) -> Option<f64> {
-    let beam = BeamModel::new(model.beam_spec().ok()?).ok()?;
-    let modes = beam.modes().ok()?;
-    let k = modes.len().min(COUPLED_REFERENCE_MODES);
-    let first = *oscillating_poles_at_end(model, &beam, &modes, k)?.first()?;
-    Some(first.norm() / std::f64::consts::TAU)
 }
 
 /// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes

@@ -38,6 +38,7 @@ use crate::integrate::IntegrateError;
 
 pub use contact::{ArmContact, ContactState, PointContact};
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
+pub use linear::LinearSystem;
 pub use sim::{ArmSample, ArmSimulation, Energies};
 
 /// Standard gravity, m/s².

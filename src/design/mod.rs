@@ -178,13 +178,19 @@ impl Evaluator {
     }
 
     /// Pins the base document's shaper to the nominal arm's tuning (see
-    /// [`crate::envelope::cases::nominal_shaper_hz`]), unless it is spread.
+    /// [`crate::envelope::cases::nominal_shaper_tuning`]), unless its frequencies are drawn.
     pub fn pin_shaper(&mut self) -> Result<(), DesignError> {
-        if self.draws.iter().flatten().any(|(k, _)| k == "drive.shaper_hz") {
+        let drawn = |key: &str| self.draws.iter().flatten().any(|(k, _)| k == key);
+        if drawn("drive.shaper_hz") {
             return Ok(());
         }
-        if let Some(hz) = crate::envelope::cases::nominal_shaper_hz(&self.path, &self.document)? {
-            self.set_base("drive.shaper_hz", toml::Value::Float(hz))?;
+        let pinned: Vec<(String, toml::Value)> =
+            crate::envelope::cases::nominal_shaper_tuning(&self.path, &self.document)?
+                .into_iter()
+                .filter(|(key, _)| !drawn(key))
+                .collect();
+        for (key, value) in pinned {
+            self.set_base(&key, value)?;
         }
         Ok(())
     }

@@ -72,7 +72,7 @@ mod validate;
 
 pub use profile::MotionProfile;
 pub use s_curve::SCurveLimit;
-pub use shaper::{EI_TOLERANCE, Shaper, residual_vibration};
+pub use shaper::{EI_TOLERANCE, Shaper, ShaperMode, convolve, residual_vibration};
 pub use state::DriveState;
 pub use table::MIN_TABLE_SAMPLES;
 pub use table_file::TableError;

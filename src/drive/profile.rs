@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 
 use super::s_curve::{SCurveLimit, s_curve_shape};
-use super::shaper::Shaper;
+use super::shaper::{Shaper, ShaperMode};
 use super::state::{DriveState, Piece, Segment, chain};
 use super::table;
 use super::trapezoid::{TrapezoidLimit, trapezoid_shape};
@@ -35,8 +35,8 @@ pub(super) enum Kind {
 pub(super) struct Shaping {
     pub(super) base: MotionProfile,
     pub(super) shaper: Shaper,
-    pub(super) frequency_hz: f64,
-    pub(super) damping_ratio: f64,
+    /// The modes it is tuned to, one or more.
+    pub(super) modes: Vec<ShaperMode>,
     /// `(t_i s, A_i)`, first at 0, amplitudes summing to 1.
     pub(super) impulses: Vec<(f64, f64)>,
 }

@@ -217,17 +217,25 @@ fn check_support(path: &Path, document: &toml::Value, spread: &Spread) -> Result
     Ok(())
 }
 
-/// The base scenario's shaper tuning, Hz, where `document`'s drive has a shaper and no
-/// `shaper_hz`. Left to itself each run would tune its shaper to its own arm: over spread keys
-/// that move the arm's mode (its damping, the payload, a gap that changes nothing but the run),
-/// every draw would be shaped with a knowledge of itself that a real drive does not have. An
-/// envelope and a design therefore pin the tuning to the nominal arm's.
-pub fn nominal_shaper_hz(path: &Path, document: &toml::Value) -> Result<Option<f64>, EnvelopeError> {
+/// The base scenario's shaper tuning, where `document`'s drive has a shaper and no `shaper_hz`:
+/// the keys `drive.shaper_hz` and `drive.shaper_damping_ratio` set to the modes it was tuned to
+/// (empty otherwise). Left to itself each run would tune its shaper to its own arm: over spread
+/// keys that move the arm's modes (its damping, the payload, a gap that changes nothing but the
+/// run), every draw would be shaped with a knowledge of itself that a real drive does not have.
+/// An envelope and a design therefore pin the tuning to the nominal arm's.
+pub fn nominal_shaper_tuning(path: &Path, document: &toml::Value) -> Result<Vec<(String, toml::Value)>, EnvelopeError> {
     let drive = document.get("drive");
     let shaped = drive.and_then(|d| d.get("shaper")).is_some() && drive.and_then(|d| d.get("shaper_hz")).is_none();
     if !shaped {
-        return Ok(None);
+        return Ok(Vec::new());
     }
     let scenario = Scenario::from_spec(path, spec_of(path, document.clone())?)?;
-    Ok(scenario.model.drive.motion.shaper_hz())
+    let modes = scenario.model.drive.motion.shaper_modes();
+    let list = |pick: fn(&crate::drive::ShaperMode) -> f64| {
+        toml::Value::Array(modes.iter().map(|m| toml::Value::Float(pick(m))).collect())
+    };
+    Ok(vec![
+        ("drive.shaper_hz".to_string(), list(|m| m.frequency_hz)),
+        ("drive.shaper_damping_ratio".to_string(), list(|m| m.damping_ratio)),
+    ])
 }

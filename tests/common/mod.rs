@@ -57,6 +57,7 @@ pub fn lift_to_vertical(duration_s: f64) -> DriveSpec {
         ramp_fraction: Some(0.2),
         shaper: None,
         shaper_hz: None,
+        shaper_damping_ratio: None,
     }
 }
 
