@@ -35,3 +35,12 @@ pub const SWEEP: &str = "Examples:
 pub const ENVELOPE: &str = "Examples:
   pipearm envelope scenarios/default.toml --spread 'dampeners[0].gap_m=uniform:0.0001..0.0003' --samples 64
   pipearm envelope merge recordings/envelope";
+
+pub const PIPES: &str = "Examples:
+  pipearm pipes                                    the whole catalogue
+  pipearm pipes 9-5/8                              every 9-5/8 in row
+  pipearm pipes drill-pipe 5                       5 in drill pipe";
+
+pub const CAPACITY: &str = "Examples:
+  pipearm capacity                                 the default scenario's machine and string
+  pipearm capacity scenarios/servo.toml --step-deg 15";
