@@ -13,6 +13,7 @@ pub mod analysis;
 pub mod arm;
 pub mod beam;
 pub mod bench;
+pub mod capacity;
 pub mod compare;
 pub mod contact;
 pub mod design;

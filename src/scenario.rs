@@ -296,8 +296,20 @@ impl Scenario {
 
     /// Checks and resolves a spec as if read from `path`, with its robot already read by
     /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
-    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
-        let check = Check { path };
+    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
+        Self::resolve(Check { path, capacity: true }, spec, robot)
+    }
+
+    /// Reads, checks and resolves a scenario file as [`Scenario::load`] does, but for its payload
+    /// against the machine's capacity ([`crate::capacity`]): to show what the machine lifts.
+    pub fn load_beyond_capacity(path: &Path) -> Result<Self, ScenarioError> {
+        let spec = Self::read_spec(path)?;
+        let robot = Self::load_robot(path, &spec)?;
+        Self::resolve(Check { path, capacity: false }, spec, robot)
+    }
+
+    fn resolve(check: Check, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
+        let path = check.path;
         if let Some(ratios) = &spec.arm.damping_ratios {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
         }
@@ -335,6 +347,8 @@ impl Scenario {
 /// The checks of one scenario file: each error names the file, the key and what is allowed.
 struct Check<'a> {
     path: &'a Path,
+    /// Whether the payload is checked against the machine's capacity.
+    capacity: bool,
 }
 
 impl Check<'_> {
@@ -420,6 +434,7 @@ impl Check<'_> {
             ));
         }
         self.drive_limits(model)?;
+        self.capacity(model)?;
         model.integrator.build().map_err(|e| self.invalid("integrator", e.to_string()))?;
         self.time(model)?;
         let g = model.physics.gravity_m_s2;
@@ -430,6 +445,31 @@ impl Check<'_> {
             return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", model.contact.pad_mass_kg)));
         }
         self.actuator_in_scene(model)
+    }
+
+    /// The payload within what the machine holds and lifts ([`crate::capacity`]): a pipe its
+    /// jaws close on, a weight its drive holds at every angle of the drive's path.
+    fn capacity(&self, model: &Model) -> Result<(), ScenarioError> {
+        use crate::capacity::CapacityError;
+        if !self.capacity {
+            return Ok(());
+        }
+        match crate::capacity::check(model) {
+            Ok(()) => Ok(()),
+            Err(e @ CapacityError::Jaws { .. }) => {
+                let own = model.payload.string().is_some_and(|h| h.pipe.pipe.row.is_none());
+                let key = if own { "payload.pipe.outer_diameter_m" } else { "payload.size" };
+                Err(self.invalid(key, e.to_string()))
+            }
+            // A servo or cylinder too weak for the arm itself: its holding checks name the setting.
+            Err(CapacityError::ArmAlone { .. })
+                if !matches!(model.drive.actuator, crate::actuator::Actuator::Ideal) =>
+            {
+                Ok(())
+            }
+            Err(e @ CapacityError::ArmAlone { .. }) => Err(self.invalid("robot", e.to_string())),
+            Err(e) => Err(self.invalid("payload", e.to_string())),
+        }
     }
 
     fn damping_ratios(&self, ratios: &[f64]) -> Result<Vec<f64>, ScenarioError> {

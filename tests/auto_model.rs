@@ -115,8 +115,8 @@ fn the_strings_auto_is_rigid_exactly_where_a_rigid_string_is_within_one_percent(
     pup.dampeners.clear();
     let held = pup.payload.string_mut().unwrap();
     held.pipe = pipearm::robot::PipeString::from_spec(&pipearm::robot::StringSpec {
-        size: "4-1/2".into(),
         length_m: Some(6.0),
+        ..pipearm::robot::StringSpec::of_size("4-1/2")
     })
     .unwrap();
     for grip in &mut held.grips {

@@ -194,7 +194,7 @@ fn the_guide_holds_the_string_as_a_cantilever_from_its_hand() {
     assert_eq!(arm_guide.impact_count, 0, "the arm passes clear of the guide");
     let final_force = *series.pad_force_n[k].last().unwrap();
     let held = s.payload.string().unwrap();
-    let pipe = held.pipe.pipe;
+    let pipe = &held.pipe.pipe;
     let (r_out, r_in) = (0.5 * pipe.outer_diameter_m, 0.5 * pipe.outer_diameter_m - pipe.wall_m);
     // Steel at 206 GPa, as the string model takes it.
     let ei = 2.06e11 * std::f64::consts::FRAC_PI_4 * (r_out.powi(4) - r_in.powi(4));

@@ -40,6 +40,7 @@ fn arm_with_string(ei: f64, start_m: f64, clamps_m: Vec<f64>, kept_modes: Option
         elements,
         kept_modes,
         damping_ratio: 0.0,
+        pieces: Vec::new(),
     })
 }
 
@@ -89,6 +90,7 @@ fn a_tube_on_a_limp_arm_rings_free_free() {
         elements: 50,
         kept_modes: None,
         damping_ratio: 0.0,
+        pieces: Vec::new(),
     });
     let beam = BeamModel::new(spec).unwrap();
     let s = tubing(12.5);

@@ -50,4 +50,13 @@ pub const COMPARE: &str = "Examples:
 pub const FIT: &str = "Examples:
   pipearm fit scenarios/default.toml --measured measurements/rig.csv --params 'dampeners[0].law.stiffness' --shift
   pipearm fit scenarios/default.toml --measured measurements/rig.csv \\
-      --params 'dampeners[0].law.stiffness,arm.damping_ratios[0]' --step 0.001";
+      --params 'dampeners[0].law.stiffness,arm.damping_ratios[0]' --step 0.001 --shift";
+
+pub const PIPES: &str = "Examples:
+  pipearm pipes                                    the whole catalogue
+  pipearm pipes 9-5/8                              every 9-5/8 in row
+  pipearm pipes drill-pipe 5                       5 in drill pipe";
+
+pub const CAPACITY: &str = "Examples:
+  pipearm capacity                                 the default scenario's machine and string
+  pipearm capacity scenarios/servo.toml --step-deg 15";

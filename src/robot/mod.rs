@@ -6,14 +6,17 @@
 //! fixed or prismatic joints. Each carried link becomes a concentrated mass at the arm station
 //! of its centre of mass; its offset across the arm and out of the plane is kept for geometry only.
 
-mod pipes;
+pub mod pipes;
 mod urdf;
 
 use std::path::PathBuf;
 
 use thiserror::Error;
 
-pub use pipes::{PIPE_CATALOGUE, PipeSize, PipeString, StringSpec, pipe_size};
+pub use pipes::{
+    ConnectionPiece, CustomPipeSpec, Joints, PIPE_CATALOGUE, Pipe, PipeSize, PipeString, Product, Range, StringSpec,
+    find_row, pipe_size,
+};
 pub use urdf::load_robot;
 
 use crate::beam::{BeamError, BeamSpec, ConcentratedMass, Material, SectionShape, Segment};

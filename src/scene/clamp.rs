@@ -78,7 +78,7 @@ impl FrictionGrip {
     pub fn new(held: &HeldString, robot: &Robot, at: ClampPlacement, gravity_m_s2: f64, step_s: f64) -> Self {
         let (palm, palm_pose, string_piece) = (at.palm, at.palm_pose, at.string);
         let clamp = held.friction;
-        let string = held.pipe;
+        let string = &held.pipe;
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -gravity_m_s2, 0.0);
         world.integration_parameters.dt = step_s;
