@@ -29,6 +29,7 @@ use serde::Serialize;
 use crate::analysis::StiffnessClass;
 use crate::arm::{ArmModel, ArmSimulation, Fidelity};
 use crate::beam::{BeamError, BeamModel, ModalBasis};
+use crate::drive::MotionLaw;
 use crate::model::{Dampener, Model};
 
 /// The fidelity chosen and why.
@@ -142,7 +143,7 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
         n = n.max(k);
     }
     let motion = &model.drive.motion;
-    if motion.name() == "s-curve" {
+    if motion.law() == MotionLaw::SCurve {
         let t_j = motion.peak_accel_rad_s2() / motion.peak_jerk_rad_s3();
         let k = below(1.0 / t_j);
         band_hz = band_hz.max(1.0 / t_j);
@@ -276,7 +277,7 @@ pub struct MotionAdvice {
 /// The seed's recommended acceleration limits (§4) for `class`, against the model's drive.
 pub fn motion_advice(model: &Model, class: StiffnessClass) -> MotionAdvice {
     let motion = &model.drive.motion;
-    let s_curve = motion.name() == "s-curve";
+    let s_curve = motion.law() == MotionLaw::SCurve;
     let peak = motion.peak_accel_rad_s2().to_degrees();
     let (advice, limit, profile_ok) = match class {
         StiffnessClass::Rigid => ("trapezoidal drive, acceleration at start and stop ≤ 7–8 °/s²", 7.0, true),
@@ -285,7 +286,7 @@ pub fn motion_advice(model: &Model, class: StiffnessClass) -> MotionAdvice {
         StiffnessClass::Flexible => ("S-curve, acceleration ≤ 7–8 °/s²", 7.0, s_curve),
         StiffnessClass::BeyondYield => ("beyond the seed's bands: stiffen the arm", 0.0, false),
     };
-    let uniform = motion.name() == "uniform";
+    let uniform = motion.law() == MotionLaw::Uniform;
     MotionAdvice {
         advice: advice.into(),
         peak_accel_deg_s2: peak,

@@ -253,19 +253,22 @@ impl MotionProfile {
         self.peak_jerk_rad_s3
     }
 
-    /// Profile name: `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`,
-    /// `"spin-up"` or `"table"`. A shaped profile is named by its base (its shaper by
-    /// [`Self::shaper`]).
-    pub fn name(&self) -> &'static str {
+    /// The motion law: a shaped profile's is its base's (its shaper is [`Self::shaper`]).
+    pub fn law(&self) -> MotionLaw {
         match &self.kind {
-            Kind::Shaped(shaping) => shaping.base.name(),
-            Kind::Uniform => "uniform",
-            Kind::Trapezoidal => "trapezoidal",
-            Kind::SCurve => "s-curve",
-            Kind::Hold => "hold",
-            Kind::SpinUp { .. } => "spin-up",
-            Kind::Table { .. } => "table",
+            Kind::Shaped(shaping) => shaping.base.law(),
+            Kind::Uniform => MotionLaw::Uniform,
+            Kind::Trapezoidal => MotionLaw::Trapezoidal,
+            Kind::SCurve => MotionLaw::SCurve,
+            Kind::Hold => MotionLaw::Hold,
+            Kind::SpinUp { .. } => MotionLaw::SpinUp,
+            Kind::Table { .. } => MotionLaw::Table,
         }
+    }
+
+    /// The motion law's name as the scenario and the summary spell it ([`MotionLaw::name`]).
+    pub fn name(&self) -> &'static str {
+        self.law().name()
     }
 
     /// Builds a symmetric profile and checks that its first half really
@@ -307,6 +310,31 @@ impl MotionProfile {
                 self.duration_s,
                 "a value for which the requested limits give a numerically representable profile",
             ))
+        }
+    }
+}
+
+/// The law a hub profile follows, whatever its parameters: what callers branch on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotionLaw {
+    Uniform,
+    Trapezoidal,
+    SCurve,
+    Hold,
+    SpinUp,
+    Table,
+}
+
+impl MotionLaw {
+    /// `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`, `"spin-up"` or `"table"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MotionLaw::Uniform => "uniform",
+            MotionLaw::Trapezoidal => "trapezoidal",
+            MotionLaw::SCurve => "s-curve",
+            MotionLaw::Hold => "hold",
+            MotionLaw::SpinUp => "spin-up",
+            MotionLaw::Table => "table",
         }
     }
 }

@@ -163,7 +163,7 @@ fn convolved_segments(base: &MotionProfile, impulses: &[(f64, f64)], duration_s:
 #[cfg(test)]
 mod tests {
     use crate::drive::test_support::{assert_close, check_derivatives, max_abs};
-    use crate::drive::{MotionProfile, SCurveLimit, Shaper, TrapezoidLimit};
+    use crate::drive::{MotionLaw, MotionProfile, SCurveLimit, Shaper, TrapezoidLimit};
 
     const F: f64 = 0.7;
     const ZETA: f64 = 0.02;
@@ -236,10 +236,10 @@ mod tests {
             assert!(p.peak_rate_rad_s() < base.peak_rate_rad_s() * (1.0 + 1e-12), "shaping never raises the peak rate");
             let dense_accel = max_abs(&p, t_end, |s| s.accel_rad_s2);
             assert_close(p.peak_accel_rad_s2(), dense_accel, 1e-6 * dense_accel.max(1e-9), "peak accel");
-            if base.name() == "s-curve" {
+            if base.law() == MotionLaw::SCurve {
                 let dense_jerk = max_abs(&p, t_end, |s| s.jerk_rad_s3);
                 assert_close(p.peak_jerk_rad_s3(), dense_jerk, 1e-9 * dense_jerk, "peak jerk");
-            } else if base.name() == "trapezoidal" {
+            } else if base.law() == MotionLaw::Trapezoidal {
                 assert_eq!(p.peak_jerk_rad_s3(), f64::INFINITY);
             }
         }

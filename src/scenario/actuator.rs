@@ -23,6 +23,7 @@ use nalgebra::Complex;
 
 use crate::arm::{ArmError, ArmModel, ArmSimulation};
 use crate::beam::BeamModel;
+use crate::drive::MotionLaw;
 use crate::integrate::IntegratorKind;
 use crate::model::Model;
 use crate::robot::Robot;
@@ -310,7 +311,7 @@ impl Check<'_> {
         if rate <= hub_limit * (1.0 + 1e-9) {
             return Ok(());
         }
-        let (key, remedy) = if motion.name() == "table" {
+        let (key, remedy) = if motion.law() == MotionLaw::Table {
             ("drive.file", "a slower table")
         } else {
             ("drive.duration_s", "a longer move")
@@ -393,7 +394,7 @@ impl Check<'_> {
     fn holding(&self, model: &Model, started: Result<ArmSimulation, ArmError>) -> Result<ArmSimulation, ScenarioError> {
         let why = match started {
             Ok(sim) => return Ok(sim),
-            Err(ArmError::InvalidParameter { name, allowed, .. }) if name == "actuator" => allowed,
+            Err(ArmError::ActuatorCannotHold { why, .. }) => why,
             Err(e) => return Err(self.invalid("actuator.kind", format!("the actuated start fails: {e}"))),
         };
         let source = model.robot.source.display();

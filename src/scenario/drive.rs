@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::{Check, Scenario, ScenarioError};
-use crate::drive::{DriveError, MotionProfile, SCurveLimit, Shaper, ShaperMode, TableError, TrapezoidLimit};
+use crate::drive::{DriveError, MotionLaw, MotionProfile, SCurveLimit, Shaper, ShaperMode, TableError, TrapezoidLimit};
 use crate::model::{Model, TunedMode};
 use crate::tuning;
 
@@ -236,7 +236,7 @@ impl Check<'_> {
         let limits = format!("the lift joint's limits {:.3} ..= {:.3} deg", deg(lo), deg(hi));
         let outside = |angle: f64| !(lo - 1e-9..=hi + 1e-9).contains(&angle);
         let motion = &model.drive.motion;
-        let table = motion.name() == "table";
+        let table = motion.law() == MotionLaw::Table;
         if table {
             let (min, max) = motion.angle_range_rad(model.duration_s());
             if outside(min) || outside(max) {
