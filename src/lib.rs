@@ -16,6 +16,7 @@ pub mod bench;
 pub mod compare;
 pub mod contact;
 pub mod design;
+pub mod draw;
 pub mod drive;
 pub mod envelope;
 pub mod export;

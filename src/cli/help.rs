@@ -35,3 +35,8 @@ pub const SWEEP: &str = "Examples:
 pub const ENVELOPE: &str = "Examples:
   pipearm envelope scenarios/default.toml --spread 'dampeners[0].gap_m=uniform:0.0001..0.0003' --samples 64
   pipearm envelope merge recordings/envelope";
+
+pub const DRAW: &str = "Examples:
+  pipearm draw                                     the default scenario: recordings/default.machine.svg and .png
+  pipearm draw scenarios/string_strike.toml        the lift with its well-centre guide
+  pipearm draw robots/pipe_arm.urdf --out recordings/pipe_arm.svg   the robot alone";

@@ -1,6 +1,7 @@
 //! The CLI's longer commands, each in its own file (the binary's; the library has none of this).
 
 pub mod design;
+pub mod draw;
 pub mod envelope;
 pub mod help;
 pub mod measured;
