@@ -17,6 +17,7 @@ pub mod capacity;
 pub mod compare;
 pub mod contact;
 pub mod design;
+pub mod draw;
 pub mod drive;
 pub mod envelope;
 pub mod export;

@@ -209,6 +209,10 @@ enum Command {
         #[arg(long, default_value_t = 10.0)]
         step_deg: f64,
     },
+    /// Draw the machine as pipearm reads it, dimensioned: the arm and its sections, the hands,
+    /// the string, the pads, structures and cylinder pins, the lift angle; write
+    /// recordings/<name>.machine.svg and .png.
+    Draw(cli::draw::DrawArgs),
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     #[command(after_help = cli::help::MODES)]
     Modes {
@@ -287,6 +291,7 @@ fn main() -> Result<()> {
         Command::Sweep(args) => cli::sweep::sweep(args),
         Command::Envelope(args) => cli::envelope::envelope(args),
         Command::Design(args) => cli::design::design_command(args),
+        Command::Draw(args) => cli::draw::draw(args),
         Command::Fit { scenario, measured, params, model, step, shift, out } => {
             let settings = pipearm::fit::RunSettings { fidelity: model, step_s: step };
             cli::measured::fit_command(&scenario, &measured, &params, (settings, shift), &out)

@@ -60,3 +60,7 @@ pub const PIPES: &str = "Examples:
 pub const CAPACITY: &str = "Examples:
   pipearm capacity                                 the default scenario's machine and string
   pipearm capacity scenarios/servo.toml --step-deg 15";
+pub const DRAW: &str = "Examples:
+  pipearm draw                                     the default scenario: recordings/default.machine.svg and .png
+  pipearm draw scenarios/string_strike.toml        the lift with its well-centre guide
+  pipearm draw robots/pipe_arm.urdf --out recordings/pipe_arm.svg   the robot alone";

@@ -2,6 +2,7 @@
 
 pub mod capacity;
 pub mod design;
+pub mod draw;
 pub mod envelope;
 pub mod help;
 pub mod measured;

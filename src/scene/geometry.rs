@@ -177,13 +177,7 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
     if let Some(held) = model.payload.string()
         && let Some(clamp) = robot.body(&held.palm().hand)
     {
-        // The string's axis runs along the arm, midway between the jaws.
-        let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
-        let mean = |f: fn(&crate::robot::CarriedBody) -> f64, own: f64| {
-            if jaws.is_empty() { own } else { jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64 }
-        };
-        let lateral = mean(|b| b.lateral_m, clamp.lateral_m);
-        let normal = mean(|b| b.normal_offset_m, clamp.normal_offset_m);
+        let [lateral, normal] = robot.string_axis_offset_m(clamp);
         let radius = 0.5 * held.pipe.pipe.outer_diameter_m;
         let half_length = 0.5 * held.pipe.length_m;
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
