@@ -298,13 +298,12 @@ fn string<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &ArmPlan, subject: &Sub
     }
     let [_, normal] =
         subject.robot().body(&held.palm().hand).map_or([0.0, 0.0], |b| subject.robot().string_axis_offset_m(b));
-    let pipe = held.pipe.pipe;
+    let pipe = &held.pipe.pipe;
     let clamp =
         held.friction_clamp().map_or(String::new(), |f| format!(", friction clamp μ {}", f.friction_coefficient));
     let text = format!(
-        "string {} {}: Ø{} mm, wall {} mm, {} kg{clamp}; axis {} m toward you",
-        pipe.size,
-        pipe.product.split(',').next().unwrap_or(pipe.product),
+        "string {}: Ø{} mm, wall {} mm, {} kg{clamp}; axis {} m toward you",
+        pipe.label,
         mm(pipe.outer_diameter_m),
         mm(pipe.wall_m),
         trimmed(held.pipe.mass_kg(), 1),

@@ -151,9 +151,8 @@ fn facts(subject: &Subject) -> Vec<String> {
         Payload::String(held) => {
             let grips: Vec<String> = held.grips.iter().map(|g| format!("{} at {} m", g.hand, metres(g.at_m))).collect();
             format!(
-                "payload string {} {}: {} m, {} kg; gripped by {} along it (from its inner end); clamp {}",
-                held.pipe.pipe.size,
-                held.pipe.pipe.product,
+                "payload string {}: {} m, {} kg; gripped by {} along it (from its inner end); clamp {}",
+                held.pipe.pipe.label,
                 metres(held.pipe.length_m),
                 trimmed(held.pipe.mass_kg(), 1),
                 grips.join(" and "),
