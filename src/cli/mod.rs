@@ -6,6 +6,7 @@ pub mod draw;
 pub mod envelope;
 pub mod help;
 pub mod measured;
+pub mod modes;
 pub mod overrides;
 pub mod pipes;
 pub mod project;

@@ -16,7 +16,7 @@
 use rapier3d_f64::prelude::*;
 
 use super::geometry::{ArmPiece, ArmView};
-use super::source::ContactSource;
+use super::source::{ContactSource, GripReading};
 use crate::arm::{ArmContact, GeneralizedLoad};
 use crate::model::HeldString;
 use crate::robot::{CarriedBody, Mount, Robot, Shape};
@@ -223,8 +223,8 @@ impl ContactSource for FrictionGrip {
         ))
     }
 
-    fn grip(&self) -> Option<&FrictionGrip> {
-        Some(self)
+    fn grip(&self) -> Option<GripReading> {
+        Some(GripReading { slip_m: self.slip_m, jaw_sinking_m: self.jaw_sinking_m, squeeze_n: self.squeeze_n })
     }
 
     fn take_string_load(&mut self, load_n: [f64; 2]) -> Option<f64> {

@@ -41,7 +41,7 @@ use pipeline::PipelineContacts;
 pub use pipeline::{ManifoldPoint, manifold_between};
 use rapier_pads::RapierPads;
 pub use rapier_pads::{UnsupportedPad, rapier_pad_spring};
-pub use source::ContactSource;
+pub use source::{ContactSource, GripReading};
 
 /// The arm, the shapes riding on it and the sources of its contact loads.
 pub struct Scene {
@@ -273,7 +273,7 @@ impl Scene {
     }
 
     /// The friction clamp, if the string is held by one.
-    pub fn grip(&self) -> Option<&FrictionGrip> {
+    pub fn grip(&self) -> Option<GripReading> {
         self.sources.iter().find_map(|s| s.grip())
     }
 

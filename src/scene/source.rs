@@ -16,7 +16,6 @@
 //!
 //! A new source implements the trait and is added to the scene's list; the step does not change.
 
-use super::clamp::FrictionGrip;
 use super::geometry::ArmView;
 use super::pair::ContactPair;
 use crate::arm::{ArmContact, GeneralizedLoad};
@@ -57,8 +56,8 @@ pub trait ContactSource {
         None
     }
 
-    /// The friction clamp holding the string, if this source is one (its slip for the summary).
-    fn grip(&self) -> Option<&FrictionGrip> {
+    /// What a friction clamp reads of the string it holds, if this source is one.
+    fn grip(&self) -> Option<GripReading> {
         None
     }
 
@@ -68,4 +67,15 @@ pub trait ContactSource {
     fn take_string_load(&mut self, _load_n: [f64; 2]) -> Option<f64> {
         None
     }
+}
+
+/// What a friction clamp reads of the string it holds, at the end of the last step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GripReading {
+    /// The string's slip along the arm from where it was gripped, m.
+    pub slip_m: f64,
+    /// How deep the jaws have sunk into the string, m.
+    pub jaw_sinking_m: f64,
+    /// Each jaw's squeeze, N.
+    pub squeeze_n: f64,
 }
