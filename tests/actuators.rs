@@ -1,6 +1,7 @@
 //! Servo and hydraulic drives against closed forms: the locked cylinder's oil spring, the drive
 //! train's spring, a PD loop's step response, the valve's steady flow, the relief valve's cap,
-//! and the work the actuator does against the arm's energy.
+//! and the work the actuator does against the arm's energy; and a rigid arm's residual read off
+//! its hub, against the linearised loop's pole.
 
 mod common;
 
@@ -346,4 +347,55 @@ fn seated_arm_presses_the_pad_with_the_hub_torque_over_its_lever() {
         force * lever,
         torque + gravity_moment
     );
+}
+
+/// The shipped hydraulic lift with `edit` applied to its text and its pad removed, run with a
+/// rigid arm; with the least damped oscillating pole of the arm and its drive linearised at rest
+/// at the end angle, rad/s.
+fn rigid_on_the_cylinder(edit: impl Fn(String) -> String) -> (pipearm::run::RunSummary, nalgebra::Complex<f64>) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let text = edit(std::fs::read_to_string(&path).unwrap());
+    let mut spec: pipearm::scenario::ScenarioSpec = toml::from_str(&text).unwrap();
+    spec.dampeners.clear();
+    let model = pipearm::scenario::Scenario::from_spec(&path, spec).unwrap().model;
+    let arm = model.arm_model(Fidelity::Rigid).unwrap();
+    let held = model.hub_drive_held_at(model.drive.motion.end_rad());
+    let sim = ArmSimulation::new(arm, held, model.integrator).unwrap();
+    let pole = sim
+        .linear_poles()
+        .unwrap()
+        .into_iter()
+        .filter(|p| p.im > 0.0)
+        .min_by(|a, b| (-a.re / a.norm()).total_cmp(&(-b.re / b.norm())))
+        .unwrap();
+    (pipearm::run::run(&model, Some(Fidelity::Rigid)).unwrap().0, pole)
+}
+
+/// A rigid arm on its cylinder has no deflection to read, yet its hub rings on the oil column:
+/// the summary reads the residual's frequency and decay off the hub rate, and they are the
+/// linearised loop's least damped pole's — on the shipped lift without its pad (ζ ≈ 0.17: it
+/// rings two cycles on the hub's slow settling), and with no payload, no valve leakage and the
+/// valve nearly closed (kp = 1e-4: nothing damps the sealed cylinder).
+#[test]
+fn a_rigid_arm_on_its_cylinder_rings_on_the_oil_column() {
+    let sealed = |t: String| {
+        t.replace("kind = \"string\"\nsize = \"2-7/8\"", "kind = \"none\"")
+            .replace("model = { kind = \"rigid\" }\n", "")
+            .replace("leakage_m3_s_per_pa = 1.0e-11", "leakage_m3_s_per_pa = 0.0")
+            .replace("kp = 5.0", "kp = 1e-4")
+    };
+    for (name, (summary, pole)) in
+        [("shipped", rigid_on_the_cylinder(|t| t)), ("sealed", rigid_on_the_cylinder(sealed))]
+    {
+        let r = &summary.residual;
+        let (f_d, zeta) = (pole.im / std::f64::consts::TAU, -pole.re / pole.norm());
+        println!(
+            "{name}: residual {:.3} Hz, ζ {:.4}; linearised pole {f_d:.3} Hz, ζ {zeta:.4}",
+            r.frequency_hz, r.damping_ratio
+        );
+        assert_eq!(r.signal, pipearm::analysis::ResidualSignal::HubRate);
+        assert!(r.amplitude_m < 1e-9 && r.hub_rate_amplitude_rad_s.unwrap() > 1e-4, "{name}: {r:?}");
+        assert!(rel(r.frequency_hz, f_d) < 0.02, "{name}: {} Hz against the pole's {f_d} Hz", r.frequency_hz);
+        assert!((r.damping_ratio - zeta).abs() < 0.1 * zeta.max(0.01), "{name}: ζ {} against {zeta}", r.damping_ratio);
+    }
 }
