@@ -399,3 +399,55 @@ fn a_rigid_arm_on_its_cylinder_rings_on_the_oil_column() {
         assert!((r.damping_ratio - zeta).abs() < 0.1 * zeta.max(0.01), "{name}: ζ {} against {zeta}", r.damping_ratio);
     }
 }
+
+/// Why the shipped hydraulic lift, edited by `edit`, is refused (panics if it is not).
+fn hydraulic_refused(edit: impl Fn(String) -> String) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let spec: pipearm::scenario::ScenarioSpec = toml::from_str(&edit(std::fs::read_to_string(&path).unwrap())).unwrap();
+    match pipearm::scenario::Scenario::from_spec(&path, spec) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("the edited hydraulic lift was accepted"),
+    }
+}
+
+/// The growth rate (Re λ, 1/s) of the growing pole a refusal names.
+fn refused_growth(message: &str) -> f64 {
+    let at = message.find("pole ").expect("the refusal names the pole") + "pole ".len();
+    message[at..].split_whitespace().next().unwrap().parse().unwrap()
+}
+
+/// The loop check's advice follows from the poles it computed: it names a setting and a way only
+/// where the refused pole's growth, computed again with that setting moved, falls. Without valve
+/// leakage kd raises the growth at kp = 0.5 and 5 and lowers it at kp = 20; the first remedy is
+/// the leakage (the error's key), and kp is to be lowered. A uniform move's rate steps at the
+/// start, and with full velocity feed-forward the valve opens at once: the feed-forward is what
+/// to lower there.
+#[test]
+fn the_loop_check_advises_the_settings_that_lower_the_growth() {
+    let sealed = |kp: f64, kd: f64| {
+        move |t: String| {
+            t.replace("leakage_m3_s_per_pa = 1.0e-11", "leakage_m3_s_per_pa = 0.0")
+                .replace("kp = 5.0", &format!("kp = {kp}, kd = {kd}"))
+        }
+    };
+    for kp in [0.5, 5.0, 20.0] {
+        let advice = hydraulic_refused(sealed(kp, 0.0));
+        let with_kd = hydraulic_refused(sealed(kp, 0.1));
+        let kd_lowers = refused_growth(&with_kd) < refused_growth(&advice);
+        println!("kp {kp}: growth {} -> {} with kd 0.1", refused_growth(&advice), refused_growth(&with_kd));
+        assert_eq!(advice.contains("raise kd"), kd_lowers, "kp {kp}: {advice}");
+        assert_eq!(kd_lowers, kp >= 20.0, "kp {kp}: kd lowers the growth only at high kp");
+        assert!(advice.contains("key `actuator.valve.leakage_m3_s_per_pa`"), "{advice}");
+        assert!(advice.contains("lower kp") && !advice.contains("raise kp"), "{advice}");
+    }
+    let uniform = hydraulic_refused(|t| {
+        t.replace("kind = \"trapezoidal\"", "kind = \"uniform\"").replace("ramp_fraction = 0.2\n", "")
+    });
+    assert!(uniform.contains("key `actuator.controller.velocity_feedforward`"), "{uniform}");
+    let less_feedforward = hydraulic_refused(|t| {
+        t.replace("kind = \"trapezoidal\"", "kind = \"uniform\"")
+            .replace("ramp_fraction = 0.2\n", "")
+            .replace("velocity_feedforward = 1.0", "velocity_feedforward = 0.9")
+    });
+    assert!(refused_growth(&less_feedforward) < refused_growth(&uniform), "{less_feedforward}");
+}
