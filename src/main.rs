@@ -584,7 +584,11 @@ fn print_summary(path: &Path, s: &RunSummary) {
     } else {
         "no decay measured".into()
     };
-    println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}", 1e3 * r.amplitude_m);
+    let read = match r.hub_rate_amplitude_rad_s {
+        Some(rate) => format!(" (frequency and decay of the hub rate, ±{:.4} °/s)", rate.to_degrees()),
+        None => String::new(),
+    };
+    println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}{read}", 1e3 * r.amplitude_m);
     if let Some(slip) = &s.string_slip {
         println!(
             "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",

@@ -5,7 +5,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::actuator::{ActuatorOutputs, ActuatorSummary};
-use crate::analysis::{Residual, StiffnessClass, residual};
+use crate::analysis::{Residual, StiffnessClass, residual_of_run};
 use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
@@ -201,7 +201,8 @@ pub struct RunSummary {
     pub drive: DriveLimits,
     /// The actuator's peaks and how well it tracked.
     pub actuator: ActuatorSummary,
-    /// Residual tip vibration after the drive stops.
+    /// Residual vibration after the drive stops: the tip deflection's amplitude, and the frequency
+    /// and decay of the signal that moves (the hub rate under an actuator).
     pub residual: Residual,
     /// Contact pairs.
     pub pairs: Vec<PairSummary>,
@@ -622,6 +623,9 @@ fn summarize(
     let deflection: Vec<(f64, f64)> =
         series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect();
     let max_tip_deflection_m = deflection.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    // Under an actuator the hub rings on its drive: the residual's frequency and decay are its.
+    let hub_rate: Option<Vec<(f64, f64)>> = (model.drive.actuator != crate::actuator::Actuator::Ideal)
+        .then(|| series.t_s.iter().copied().zip(series.hub_rate_rad_s.iter().copied()).collect());
     let (torque_i, peak_torque) = series
         .drive_torque_n_m
         .iter()
@@ -680,7 +684,7 @@ fn summarize(
             &series.drive_torque_n_m,
             &series.actuator,
         ),
-        residual: residual(&deflection, model.drive_end_s()),
+        residual: residual_of_run(&deflection, hub_rate.as_deref(), model.drive_end_s()),
         pairs,
         highest_omega_dt: fastest_rad_s(scene) * model.time.step_s,
         stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),

@@ -8,6 +8,7 @@
 
 mod actuator;
 mod drive;
+mod loop_advice;
 pub mod spelling;
 mod strikes;
 

@@ -1,6 +1,7 @@
 //! Servo and hydraulic drives against closed forms: the locked cylinder's oil spring, the drive
 //! train's spring, a PD loop's step response, the valve's steady flow, the relief valve's cap,
-//! and the work the actuator does against the arm's energy.
+//! and the work the actuator does against the arm's energy; and a rigid arm's residual read off
+//! its hub, against the linearised loop's pole.
 
 mod common;
 
@@ -346,4 +347,107 @@ fn seated_arm_presses_the_pad_with_the_hub_torque_over_its_lever() {
         force * lever,
         torque + gravity_moment
     );
+}
+
+/// The shipped hydraulic lift with `edit` applied to its text and its pad removed, run with a
+/// rigid arm; with the least damped oscillating pole of the arm and its drive linearised at rest
+/// at the end angle, rad/s.
+fn rigid_on_the_cylinder(edit: impl Fn(String) -> String) -> (pipearm::run::RunSummary, nalgebra::Complex<f64>) {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let text = edit(std::fs::read_to_string(&path).unwrap());
+    let mut spec: pipearm::scenario::ScenarioSpec = toml::from_str(&text).unwrap();
+    spec.dampeners.clear();
+    let model = pipearm::scenario::Scenario::from_spec(&path, spec).unwrap().model;
+    let arm = model.arm_model(Fidelity::Rigid).unwrap();
+    let held = model.hub_drive_held_at(model.drive.motion.end_rad());
+    let sim = ArmSimulation::new(arm, held, model.integrator).unwrap();
+    let pole = sim
+        .linear_poles()
+        .unwrap()
+        .into_iter()
+        .filter(|p| p.im > 0.0)
+        .min_by(|a, b| (-a.re / a.norm()).total_cmp(&(-b.re / b.norm())))
+        .unwrap();
+    (pipearm::run::run(&model, Some(Fidelity::Rigid)).unwrap().0, pole)
+}
+
+/// A rigid arm on its cylinder has no deflection to read, yet its hub rings on the oil column:
+/// the summary reads the residual's frequency and decay off the hub rate, and they are the
+/// linearised loop's least damped pole's — on the shipped lift without its pad (ζ ≈ 0.17: it
+/// rings two cycles on the hub's slow settling), and with no payload, no valve leakage and the
+/// valve nearly closed (kp = 1e-4: nothing damps the sealed cylinder).
+#[test]
+fn a_rigid_arm_on_its_cylinder_rings_on_the_oil_column() {
+    let sealed = |t: String| {
+        t.replace("kind = \"string\"\nsize = \"2-7/8\"", "kind = \"none\"")
+            .replace("model = { kind = \"rigid\" }\n", "")
+            .replace("leakage_m3_s_per_pa = 1.0e-11", "leakage_m3_s_per_pa = 0.0")
+            .replace("kp = 5.0", "kp = 1e-4")
+    };
+    for (name, (summary, pole)) in
+        [("shipped", rigid_on_the_cylinder(|t| t)), ("sealed", rigid_on_the_cylinder(sealed))]
+    {
+        let r = &summary.residual;
+        let (f_d, zeta) = (pole.im / std::f64::consts::TAU, -pole.re / pole.norm());
+        println!(
+            "{name}: residual {:.3} Hz, ζ {:.4}; linearised pole {f_d:.3} Hz, ζ {zeta:.4}",
+            r.frequency_hz, r.damping_ratio
+        );
+        assert_eq!(r.signal, pipearm::analysis::ResidualSignal::HubRate);
+        assert!(r.amplitude_m < 1e-9 && r.hub_rate_amplitude_rad_s.unwrap() > 1e-4, "{name}: {r:?}");
+        assert!(rel(r.frequency_hz, f_d) < 0.02, "{name}: {} Hz against the pole's {f_d} Hz", r.frequency_hz);
+        assert!((r.damping_ratio - zeta).abs() < 0.1 * zeta.max(0.01), "{name}: ζ {} against {zeta}", r.damping_ratio);
+    }
+}
+
+/// Why the shipped hydraulic lift, edited by `edit`, is refused (panics if it is not).
+fn hydraulic_refused(edit: impl Fn(String) -> String) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let spec: pipearm::scenario::ScenarioSpec = toml::from_str(&edit(std::fs::read_to_string(&path).unwrap())).unwrap();
+    match pipearm::scenario::Scenario::from_spec(&path, spec) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("the edited hydraulic lift was accepted"),
+    }
+}
+
+/// The growth rate (Re λ, 1/s) of the growing pole a refusal names.
+fn refused_growth(message: &str) -> f64 {
+    let at = message.find("pole ").expect("the refusal names the pole") + "pole ".len();
+    message[at..].split_whitespace().next().unwrap().parse().unwrap()
+}
+
+/// The loop check's advice follows from the poles it computed: it names a setting and a way only
+/// where the refused pole's growth, computed again with that setting moved, falls. Without valve
+/// leakage kd raises the growth at kp = 0.5 and 5 and lowers it at kp = 20; the first remedy is
+/// the leakage (the error's key), and kp is to be lowered. A uniform move's rate steps at the
+/// start, and with full velocity feed-forward the valve opens at once: the feed-forward is what
+/// to lower there.
+#[test]
+fn the_loop_check_advises_the_settings_that_lower_the_growth() {
+    let sealed = |kp: f64, kd: f64| {
+        move |t: String| {
+            t.replace("leakage_m3_s_per_pa = 1.0e-11", "leakage_m3_s_per_pa = 0.0")
+                .replace("kp = 5.0", &format!("kp = {kp}, kd = {kd}"))
+        }
+    };
+    for kp in [0.5, 5.0, 20.0] {
+        let advice = hydraulic_refused(sealed(kp, 0.0));
+        let with_kd = hydraulic_refused(sealed(kp, 0.1));
+        let kd_lowers = refused_growth(&with_kd) < refused_growth(&advice);
+        println!("kp {kp}: growth {} -> {} with kd 0.1", refused_growth(&advice), refused_growth(&with_kd));
+        assert_eq!(advice.contains("raise kd"), kd_lowers, "kp {kp}: {advice}");
+        assert_eq!(kd_lowers, kp >= 20.0, "kp {kp}: kd lowers the growth only at high kp");
+        assert!(advice.contains("key `actuator.valve.leakage_m3_s_per_pa`"), "{advice}");
+        assert!(advice.contains("lower kp") && !advice.contains("raise kp"), "{advice}");
+    }
+    let uniform = hydraulic_refused(|t| {
+        t.replace("kind = \"trapezoidal\"", "kind = \"uniform\"").replace("ramp_fraction = 0.2\n", "")
+    });
+    assert!(uniform.contains("key `actuator.controller.velocity_feedforward`"), "{uniform}");
+    let less_feedforward = hydraulic_refused(|t| {
+        t.replace("kind = \"trapezoidal\"", "kind = \"uniform\"")
+            .replace("ramp_fraction = 0.2\n", "")
+            .replace("velocity_feedforward = 1.0", "velocity_feedforward = 0.9")
+    });
+    assert!(refused_growth(&less_feedforward) < refused_growth(&uniform), "{less_feedforward}");
 }

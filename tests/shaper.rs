@@ -287,3 +287,28 @@ fn zvd_with_the_pad_reports_the_peak_force() {
     );
     assert!(force(&plain) > 0.0 && force(&zvd).is_finite());
 }
+
+/// An envelope or a design pins the nominal tuning as `drive.shaper_hz` and
+/// `drive.shaper_damping_ratio`: given those keys, the scenario is shaped exactly as the modes
+/// found (the same impulses), and a spread that moves the arm no longer retunes it.
+#[test]
+fn the_pinned_tuning_reproduces_the_modes_found() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");
+    let mut document = pipearm::sweep::plan::read_document(&path).unwrap();
+    pipearm::sweep::plan::set_key(&mut document, "drive.shaper", toml::Value::String("zvd".into())).unwrap();
+    let found = Scenario::from_spec(&path, pipearm::sweep::plan::spec_of(&path, document.clone()).unwrap()).unwrap();
+    let pinned_keys = pipearm::envelope::cases::nominal_shaper_tuning(&path, &document).unwrap();
+    assert_eq!(pinned_keys.len(), 2, "{pinned_keys:?}");
+    for (key, value) in pinned_keys {
+        pipearm::sweep::plan::set_key(&mut document, &key, value).unwrap();
+    }
+    let pinned = Scenario::from_spec(&path, pipearm::sweep::plan::spec_of(&path, document.clone()).unwrap()).unwrap();
+    let (a, b) = (&found.model.drive.motion, &pinned.model.drive.motion);
+    assert_eq!(a.shaper_modes(), b.shaper_modes());
+    assert_eq!(a.impulses(), b.impulses());
+    assert!(found.model.drive.shaper_tuning.len() == 2 && pinned.model.drive.shaper_tuning.is_empty());
+    // Half the damping: the modes found move, the pinned tuning does not.
+    pipearm::sweep::plan::set_key(&mut document, "arm", toml::from_str("damping_ratios = [0.005]").unwrap()).unwrap();
+    let damped = Scenario::from_spec(&path, pipearm::sweep::plan::spec_of(&path, document).unwrap()).unwrap();
+    assert_eq!(damped.model.drive.motion.shaper_modes(), b.shaper_modes());
+}
