@@ -204,18 +204,17 @@ fn segments<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &ArmPlan, subject: &S
         let (a, b) = (v.px([x, half]), v.px([x + segment.length_m, -half]));
         p.rect(a, b, ARM_FILL.mix(1.0), ARM_EDGE)?;
         p.line(&[a, (b.0, a.1)], UPPER_FACE, 3)?;
-        let material = segment.material;
+        let which = match arm.segments.len() {
+            1 => format!("arm `{}`", arm.name),
+            _ => format!("segment {} of `{}`", k + 1, arm.name),
+        };
         let text = format!(
-            "{} {}: {} m, {}; E {} GPa, ρ {} kg/m³",
-            if arm.segments.len() == 1 { format!("arm `{}`", arm.name) } else { format!("segment {}", k + 1) },
-            if arm.segments.len() == 1 { String::new() } else { format!("of `{}`", arm.name) },
+            "{which}: {} m, {}; E {} GPa, ρ {} kg/m³",
             metres(segment.length_m),
             section_text(&segment.section),
-            trimmed(material.youngs_modulus_pa / 1e9, 1),
-            trimmed(material.density_kg_m3, 0),
-        )
-        .replace("  ", " ")
-        .replace(" :", ":");
+            trimmed(segment.material.youngs_modulus_pa / 1e9, 1),
+            trimmed(segment.material.density_kg_m3, 0),
+        );
         let anchor = v.px([x + 0.5 * segment.length_m, half]);
         p.label(&text, Some(anchor), &plan.slots(anchor.0, plan.above), ARM_EDGE, plan.rect)?;
         x += segment.length_m;

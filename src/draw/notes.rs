@@ -113,27 +113,39 @@ fn facts(subject: &Subject) -> Vec<String> {
         ratios.join(", "),
         trimmed(arm.hub_inertia_kg_m2, 3)
     ));
-    if let Some((c, drives)) = subject.cylinder() {
-        let [bx, by] = c.base_pin_m;
-        let [ax, ay] = c.arm_pin_m;
-        let role = match subject.model() {
-            Some(_) if drives => "; drives this lift",
-            Some(_) => "; not this scenario's actuator",
-            None => "",
-        };
-        facts.push(format!(
-            "cylinder: bore {} mm, rod {} mm; closed {} m, stroke {} m; base pin ({}, {}) m from the pivot, arm pin ({}, {}) m in the arm frame{role}",
-            mm(c.bore_m),
-            mm(c.rod_m),
-            metres(c.closed_length_m),
-            metres(c.stroke_m),
-            metres(bx),
-            metres(by),
-            metres(ax),
-            metres(ay)
-        ));
+    facts.extend(cylinder_fact(subject));
+    if let Some(model) = subject.model() {
+        facts.extend(scene_facts(model));
     }
-    let Some(model) = subject.model() else { return facts };
+    facts
+}
+
+/// What the URDF says of the cylinder, and whether it drives the scene's lift.
+fn cylinder_fact(subject: &Subject) -> Option<String> {
+    let (c, drives) = subject.cylinder()?;
+    let [bx, by] = c.base_pin_m;
+    let [ax, ay] = c.arm_pin_m;
+    let role = match subject.model() {
+        Some(_) if drives => "; drives this lift",
+        Some(_) => "; not this scenario's actuator",
+        None => "",
+    };
+    Some(format!(
+        "cylinder: bore {} mm, rod {} mm; closed {} m, stroke {} m; base pin ({}, {}) m from the pivot, arm pin ({}, {}) m in the arm frame{role}",
+        mm(c.bore_m),
+        mm(c.rod_m),
+        metres(c.closed_length_m),
+        metres(c.stroke_m),
+        metres(bx),
+        metres(by),
+        metres(ax),
+        metres(ay)
+    ))
+}
+
+/// What the scenario says of its drive, payload, pads and structures.
+fn scene_facts(model: &crate::model::Model) -> Vec<String> {
+    let mut facts = Vec::new();
     let motion = &model.drive.motion;
     facts.push(format!(
         "drive {}: θ {} → {} in {} s; actuator {}",
