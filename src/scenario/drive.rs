@@ -45,6 +45,13 @@ impl PerMode {
     }
 }
 
+/// A drive's `shaper` keys as written, each perhaps absent.
+struct ShaperKeys<'a> {
+    shaper: Option<Shaper>,
+    frequencies_hz: Option<&'a [f64]>,
+    damping_ratios: Option<&'a [f64]>,
+}
+
 /// What a drive's `shaper` keys ask for: the shaper, and the modes' frequencies (Hz) and damping
 /// ratios if given.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -128,7 +135,10 @@ impl Check<'_> {
     /// The drive's profile; a table is read from its file, relative to the scenario.
     pub(super) fn drive(&self, drive: &DriveSpec) -> Result<MotionProfile, ScenarioError> {
         let (tunes_nothing, damps_unknown) = match drive.shaping_keys() {
-            Some((shaper, hz, damping)) => (shaper.is_none() && hz.is_some(), hz.is_none() && damping.is_some()),
+            Some(k) => (
+                k.shaper.is_none() && k.frequencies_hz.is_some(),
+                k.frequencies_hz.is_none() && k.damping_ratios.is_some(),
+            ),
             None => (false, false),
         };
         if tunes_nothing {
@@ -273,20 +283,24 @@ impl DriveSpec {
     /// The input shaper a uniform, trapezoidal or s-curve drive asks for, with its tuning if
     /// given.
     pub fn shaping(&self) -> Option<ShaperRequest<'_>> {
-        let (shaper, hz, damping) = self.shaping_keys()?;
-        Some(ShaperRequest { shaper: shaper?, frequencies_hz: hz, damping_ratios: damping })
+        let keys = self.shaping_keys()?;
+        Some(ShaperRequest {
+            shaper: keys.shaper?,
+            frequencies_hz: keys.frequencies_hz,
+            damping_ratios: keys.damping_ratios,
+        })
     }
 
     /// The `shaper`, `shaper_hz` and `shaper_damping_ratio` of a drive that takes them.
-    fn shaping_keys(&self) -> Option<(Option<Shaper>, Option<&[f64]>, Option<&[f64]>)> {
+    fn shaping_keys(&self) -> Option<ShaperKeys<'_>> {
         match self {
             DriveSpec::Uniform { shaper, shaper_hz, shaper_damping_ratio, .. }
             | DriveSpec::Trapezoidal { shaper, shaper_hz, shaper_damping_ratio, .. }
-            | DriveSpec::SCurve { shaper, shaper_hz, shaper_damping_ratio, .. } => Some((
-                *shaper,
-                shaper_hz.as_ref().map(PerMode::values),
-                shaper_damping_ratio.as_ref().map(PerMode::values),
-            )),
+            | DriveSpec::SCurve { shaper, shaper_hz, shaper_damping_ratio, .. } => Some(ShaperKeys {
+                shaper: *shaper,
+                frequencies_hz: shaper_hz.as_ref().map(PerMode::values),
+                damping_ratios: shaper_damping_ratio.as_ref().map(PerMode::values),
+            }),
             DriveSpec::Hold { .. } | DriveSpec::Table { .. } => None,
         }
     }
