@@ -132,6 +132,20 @@ pub struct Drive {
     pub motion: MotionProfile,
     /// What tracks it ([`Actuator::Ideal`]: the hub follows it exactly).
     pub actuator: Actuator,
+    /// The modes an input shaper on the motion was tuned to when they were found rather than
+    /// given, with their shares of the residual ([`crate::tuning`]); empty otherwise.
+    pub shaper_tuning: Vec<TunedMode>,
+}
+
+/// A mode a drive's input shaper was tuned to, found by [`crate::tuning`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TunedMode {
+    /// Natural frequency |λ|/2π of the linearised arm's pole, Hz.
+    pub frequency_hz: f64,
+    /// Its damping ratio −Re λ/|λ|.
+    pub damping_ratio: f64,
+    /// Its largest share of an output's residual vibration after the unshaped move (0..1).
+    pub residual_share: f64,
 }
 
 /// What the gripper holds.

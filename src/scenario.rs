@@ -8,7 +8,9 @@
 
 mod actuator;
 mod capacity;
+mod clamp;
 mod drive;
+mod loop_advice;
 pub mod spelling;
 mod strikes;
 
@@ -27,7 +29,7 @@ use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
-pub use drive::DriveSpec;
+pub use drive::{DriveSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
 /// A scenario file as written, and as a TOML document with its old spellings rewritten to the
@@ -326,7 +328,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator },
+            drive: Drive { motion, actuator, shaper_tuning: Vec::new() },
             dampeners: dampeners?,
             structures,
             contact: spec.contact,
@@ -336,8 +338,8 @@ impl Scenario {
             time: spec.time,
             sensors,
         };
-        if let Some((_, shaper_hz)) = spec.drive.shaping() {
-            model.drive.motion = check.shaped(&spec.drive, shaper_hz, &model)?;
+        if let Some(request) = spec.drive.shaping() {
+            (model.drive.motion, model.drive.shaper_tuning) = check.shaped(&spec.drive, request, &model)?;
         }
         check.model(&model)?;
         check.structures_clear(&model)?;
@@ -645,40 +647,5 @@ impl Check<'_> {
             }
         }
         Ok(resolved.into_iter().map(|(_, g)| g).collect())
-    }
-
-    fn clamp(&self, held: &HeldString, robot: &Robot) -> Result<(), ScenarioError> {
-        let Some(clamp) = held.friction_clamp() else { return Ok(()) };
-        if held.grips.len() > 1 {
-            return Err(self.invalid(
-                "payload.grips",
-                "a friction clamp holds the string in one hand's jaws: give one grip (`at`)",
-            ));
-        }
-        let mu = clamp.friction_coefficient;
-        if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
-            return Err(self.invalid("payload.friction_coefficient", format!("{mu} is outside 0 < μ <= 2")));
-        }
-        if let Some(n) = clamp.squeeze_n
-            && !(n.is_finite() && n > 0.0)
-        {
-            return Err(self.invalid("payload.squeeze_n", format!("{n} is outside > 0 N")));
-        }
-        let jaws = robot.carried.iter().filter(|b| b.mount.is_prismatic()).count();
-        if jaws != 2 {
-            return Err(self.invalid(
-                "payload.clamp",
-                format!(
-                    "a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}",
-                    robot.name
-                ),
-            ));
-        }
-        if robot.body(&held.palm().hand).is_some_and(|b| b.shapes.is_empty()) {
-            return Err(
-                self.invalid("payload.at", format!("`{}` has no collision shape to carry the jaws", held.palm().hand))
-            );
-        }
-        Ok(())
     }
 }

@@ -2,9 +2,11 @@
 
 pub mod capacity;
 pub mod design;
+pub mod draw;
 pub mod envelope;
 pub mod help;
 pub mod measured;
+pub mod modes;
 pub mod overrides;
 pub mod pipes;
 pub mod project;

@@ -224,4 +224,16 @@ impl Robot {
     pub fn body(&self, name: &str) -> Option<&CarriedBody> {
         self.carried.iter().find(|b| b.name == name)
     }
+
+    /// Where a string gripped by `palm` runs, off the arm's axis, m: [across the arm in the lift
+    /// plane (body y), normal to the plane (body z)]; midway between the jaws (the carried bodies
+    /// on prismatic joints), else through the palm's centre of mass.
+    pub fn string_axis_offset_m(&self, palm: &CarriedBody) -> [f64; 2] {
+        let jaws: Vec<&CarriedBody> = self.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
+        if jaws.is_empty() {
+            return [palm.lateral_m, palm.normal_offset_m];
+        }
+        let mean = |f: fn(&CarriedBody) -> f64| jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64;
+        [mean(|b| b.lateral_m), mean(|b| b.normal_offset_m)]
+    }
 }
