@@ -188,25 +188,10 @@ enum Command {
         /// The folder (created if need be; refused if it already holds scenarios/ or robots/).
         dir: PathBuf,
     },
-    /// List the pipe catalogue: size, weight, outer diameter, wall, kg/m, connection and the mass
-    /// of one joint per range (docs/pipes.md).
-    #[command(after_help = cli::help::PIPES)]
-    Pipes {
-        /// Sizes (9-5/8) or products (casing, tubing, drill-pipe, heavy-weight-drill-pipe,
-        /// drill-collar) a row must match, all of them.
-        filters: Vec<String>,
-    },
-    /// Print what the scenario's machine holds and lifts: the pipe diameters its jaws close on
-    /// and, per lift angle, the heaviest payload each drive holds against gravity.
-    #[command(after_help = cli::help::CAPACITY)]
-    Capacity {
-        /// Scenario file (its robot, actuator and payload placement).
-        #[arg(default_value = "scenarios/default.toml")]
-        scenario: PathBuf,
-        /// Lift angle step of the table, degrees.
-        #[arg(long, default_value_t = 10.0)]
-        step_deg: f64,
-    },
+    /// List the pipe catalogue: size, weight, diameters, kg/m, connection, joint mass per range.
+    Pipes(cli::pipes::PipesArgs),
+    /// Print the diameters the jaws close on and the heaviest payload per lift angle and drive.
+    Capacity(cli::capacity::CapacityArgs),
     /// Draw the machine as pipearm reads it, dimensioned: the arm and its sections, the hands,
     /// the string, the pads, structures and cylinder pins, the lift angle; write
     /// recordings/<name>.machine.svg and .png.
@@ -275,8 +260,8 @@ fn main() -> Result<()> {
         Command::Modes { scenario, count, spin, no_stiffening } => {
             cli::modes::modes(&scenario, count, spin, !no_stiffening)
         }
-        Command::Pipes { filters } => cli::pipes::pipes(&filters),
-        Command::Capacity { scenario, step_deg } => cli::capacity::capacity(&scenario, step_deg),
+        Command::Pipes(args) => cli::pipes::pipes(&args.filters),
+        Command::Capacity(args) => cli::capacity::capacity(&args.scenario, args.step_deg),
         Command::Check { scenarios, baselines, project, bless, json, model } => {
             check(scenarios, baselines, &Project::at(&project), (bless, json), model)
         }

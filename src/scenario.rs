@@ -7,6 +7,7 @@
 //! (`robot`, a table drive's `file`) are relative to the scenario file.
 
 mod actuator;
+mod capacity;
 mod clamp;
 mod drive;
 mod loop_advice;
@@ -191,7 +192,7 @@ pub enum PayloadSpec {
     /// A pipe string from the catalogue, held by the gripper.
     String {
         #[serde(flatten)]
-        string: StringSpec,
+        string: Box<StringSpec>,
         /// One hand gripping the string at its middle (default `gripper`, when `grips` is not
         /// given).
         #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -447,31 +448,6 @@ impl Check<'_> {
             return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", model.contact.pad_mass_kg)));
         }
         self.actuator_in_scene(model)
-    }
-
-    /// The payload within what the machine holds and lifts ([`crate::capacity`]): a pipe its
-    /// jaws close on, a weight its drive holds at every angle of the drive's path.
-    fn capacity(&self, model: &Model) -> Result<(), ScenarioError> {
-        use crate::capacity::CapacityError;
-        if !self.capacity {
-            return Ok(());
-        }
-        match crate::capacity::check(model) {
-            Ok(()) => Ok(()),
-            Err(e @ CapacityError::Jaws { .. }) => {
-                let own = model.payload.string().is_some_and(|h| h.pipe.pipe.row.is_none());
-                let key = if own { "payload.pipe.outer_diameter_m" } else { "payload.size" };
-                Err(self.invalid(key, e.to_string()))
-            }
-            // A servo or cylinder too weak for the arm itself: its holding checks name the setting.
-            Err(CapacityError::ArmAlone { .. })
-                if !matches!(model.drive.actuator, crate::actuator::Actuator::Ideal) =>
-            {
-                Ok(())
-            }
-            Err(e @ CapacityError::ArmAlone { .. }) => Err(self.invalid("robot", e.to_string())),
-            Err(e) => Err(self.invalid("payload", e.to_string())),
-        }
     }
 
     fn damping_ratios(&self, ratios: &[f64]) -> Result<Vec<f64>, ScenarioError> {

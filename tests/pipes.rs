@@ -50,7 +50,7 @@ fn a_custom_pipe_overhang_rings_at_the_cantilever_frequency() {
     // cantilever clamped in the jaws, f = 1.875² / (2π) √(EI / (μ L⁴)) (Blevins, Table 8-1).
     let (d, t, mu, e) = (0.2, 0.01, 60.0, 2.0e11);
     let model = with_string("default.toml", |s| {
-        *s = StringSpec { pipe: Some(own_pipe(d, t, mu, e)), length_m: Some(7.0), ..StringSpec::default() };
+        *s = StringSpec { pipe: Some(Box::new(own_pipe(d, t, mu, e))), length_m: Some(7.0), ..StringSpec::default() };
     });
     let mut model = model.unwrap();
     let held = model.payload.string_mut().unwrap();
@@ -68,7 +68,7 @@ fn a_custom_pipe_overhang_rings_at_the_cantilever_frequency() {
 fn a_custom_pipe_lighter_than_its_steel_or_solid_is_refused_naming_the_key() {
     let refused = |pipe: CustomPipeSpec| {
         with_string("default.toml", |s| {
-            *s = StringSpec { pipe: Some(pipe), length_m: Some(7.0), ..StringSpec::default() };
+            *s = StringSpec { pipe: Some(Box::new(pipe)), length_m: Some(7.0), ..StringSpec::default() };
         })
         .unwrap_err()
         .to_string()
@@ -83,7 +83,9 @@ fn a_custom_pipe_lighter_than_its_steel_or_solid_is_refused_naming_the_key() {
     let e = refused(CustomPipeSpec { bore_m: Some(0.1), ..own_pipe(0.2, 0.01, 60.0, 2e11) });
     assert!(e.contains("wall_m and bore_m"), "{e}");
     // A catalogue key beside it.
-    let e = with_string("default.toml", |s| s.pipe = Some(own_pipe(0.2, 0.01, 60.0, 2e11))).unwrap_err().to_string();
+    let e = with_string("default.toml", |s| s.pipe = Some(Box::new(own_pipe(0.2, 0.01, 60.0, 2e11))))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("payload.size"), "{e}");
 }
 
@@ -168,7 +170,8 @@ fn the_capacity_is_the_moment_balance_about_the_pivot() {
             mass_per_length_kg_m: Some(kg / 12.5),
             ..own_pipe(0.2445, 0.0119, 0.0, 2.06e11)
         };
-        PipeString::from_spec(&StringSpec { pipe: Some(pipe), length_m: Some(12.5), ..StringSpec::default() }).unwrap()
+        let spec = StringSpec { pipe: Some(Box::new(pipe)), length_m: Some(12.5), ..StringSpec::default() };
+        PipeString::from_spec(&spec).unwrap()
     };
     let mut heavy = servo.clone();
     heavy.payload.string_mut().unwrap().pipe = string_of(1.005 * servo_kg);

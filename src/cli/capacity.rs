@@ -1,13 +1,26 @@
 //! `pipearm capacity [SCENARIO]`: what the scenario's machine holds and lifts.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
+use clap::Args;
 
 use pipearm::capacity::{
     heaviest_kg, jaw_range, lift_limits, machine_first_moment_kg_m, payload_mass_and_station, scene_limit,
 };
 use pipearm::scenario::Scenario;
+
+/// `pipearm capacity`' arguments.
+#[derive(Args)]
+#[command(after_help = super::help::CAPACITY)]
+pub struct CapacityArgs {
+    /// Scenario file (its robot, actuator and payload placement).
+    #[arg(default_value = "scenarios/default.toml")]
+    pub scenario: PathBuf,
+    /// Lift angle step of the table, degrees.
+    #[arg(long, default_value_t = 10.0)]
+    pub step_deg: f64,
+}
 
 /// Prints the jaws' range and, per lift angle, the heaviest payload each drive holds with its
 /// centre of mass where the scenario's payload has it.

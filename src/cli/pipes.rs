@@ -1,8 +1,18 @@
 //! `pipearm pipes [FILTER]...`: the pipe catalogue.
 
 use anyhow::{Result, bail};
+use clap::Args;
 
 use pipearm::robot::pipes::{PIPE_CATALOGUE, PipeSize, Product};
+
+/// `pipearm pipes`' arguments.
+#[derive(Args)]
+#[command(after_help = super::help::PIPES)]
+pub struct PipesArgs {
+    /// Sizes (9-5/8) or products (casing, tubing, drill-pipe, heavy-weight-drill-pipe,
+    /// drill-collar) a row must match, all of them.
+    pub filters: Vec<String>,
+}
 
 /// Prints the catalogue rows every filter matches (a size such as `9-5/8`, or a product such as
 /// `casing`).

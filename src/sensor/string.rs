@@ -190,6 +190,22 @@ impl StringProbe {
 /// How the held string fared: the summary's `string` object.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct StringSummary {
+    /// What it is: the catalogue row ("9-5/8 casing 47.00 lb/ft") or its own pipe's section.
+    pub pipe: String,
+    /// Its trade size, or `custom`.
+    pub size: String,
+    /// Its nominal weight, lb/ft (a catalogue row's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub weight_lb_ft: Option<f64>,
+    /// Its steel grade, if one was chosen.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grade: Option<String>,
+    /// Its joints, when it is made of joints.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joints: Option<usize>,
+    /// The mass of one of its joints with its connection, kg (when it is made of joints).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub joint_mass_kg: Option<f64>,
     /// Its fidelity (`rigid`, `modal(n)`, `fe`).
     pub model: String,
     /// Why that fidelity.
@@ -232,9 +248,18 @@ impl StringSummary {
             }
         };
         let yield_strength_pa = model.payload.string().and_then(|held| held.pipe.pipe.yield_strength_pa);
+
         let (i, stress) =
             stress_pa.iter().enumerate().fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
+        let held = model.payload.string().expect("a string summary is of a held string");
+        let (pipe, joints) = (&held.pipe.pipe, held.pipe.joints);
         Ok(StringSummary {
+            pipe: pipe.label.clone(),
+            size: pipe.size.clone(),
+            weight_lb_ft: pipe.row.map(|r| r.nominal_weight_lb_ft),
+            grade: pipe.grade.map(str::to_string),
+            joints: joints.map(|j| j.count),
+            joint_mass_kg: joints.map(|j| held.pipe.mass_kg() / j.count as f64),
             model: choice.fidelity.to_string(),
             model_reason: choice.reason,
             frequencies_hz: frequencies_hz.into_iter().take(3).collect(),

@@ -225,8 +225,11 @@ impl PipeSize {
     /// The yield strength its size fixes without a grade: API 7-1's drill collar steel, 758 MPa
     /// (110 ksi) up to 6-7/8 in, 689 MPa (100 ksi) above; `None` for the other products.
     pub fn yield_strength_pa(&self) -> Option<f64> {
-        (self.product == Product::DrillCollar)
-            .then(|| if self.outer_diameter_m <= 6.875 * INCH_M + 1e-9 { 758e6 } else { 689e6 })
+        (self.product == Product::DrillCollar).then_some(if self.outer_diameter_m <= 6.875 * INCH_M + 1e-9 {
+            758e6
+        } else {
+            689e6
+        })
     }
 
     /// Mass of one joint of `length_m`: the plain pipe and its connection, kg.

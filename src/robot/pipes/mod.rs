@@ -117,7 +117,7 @@ pub struct StringSpec {
     pub grade: Option<String>,
     /// A pipe of the user's own, instead of a catalogue row.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub pipe: Option<CustomPipeSpec>,
+    pub pipe: Option<Box<CustomPipeSpec>>,
     /// Length of a uniform string, m (default: one joint of the size's default range).
     pub length_m: Option<f64>,
     /// The joints' length class, R1, R2 or R3 (default: R3, or the only range the product has).
@@ -223,7 +223,7 @@ impl ConnectionPiece {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PipeString {
     /// The pipe.
-    pub pipe: Pipe,
+    pub pipe: Box<Pipe>,
     /// Length, m.
     pub length_m: f64,
     /// Its joints (`None`: one uniform tube).
@@ -282,13 +282,18 @@ impl PipeString {
 
     /// One uniform tube.
     pub fn uniform(pipe: Pipe, length_m: f64) -> Self {
-        PipeString { pipe, length_m, joints: None, connections: Vec::new() }
+        PipeString { pipe: Box::new(pipe), length_m, joints: None, connections: Vec::new() }
     }
 
     /// Joints of `pipe` (its body at plain-end weight) with `connection` on each.
     pub fn of_joints(pipe: Pipe, connection: &Connection, joints: Joints) -> Self {
         let length_m = joints.count as f64 * joints.joint_length_m;
-        PipeString { pipe, length_m, joints: Some(joints), connections: place_connections(connection, joints) }
+        PipeString {
+            pipe: Box::new(pipe),
+            length_m,
+            joints: Some(joints),
+            connections: place_connections(connection, joints),
+        }
     }
 
     /// Mass, kg.
