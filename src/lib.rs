@@ -19,6 +19,7 @@ pub mod design;
 pub mod drive;
 pub mod envelope;
 pub mod export;
+pub mod fatigue;
 pub mod fit;
 pub mod guard;
 pub mod integrate;
