@@ -34,4 +34,5 @@ pub mod scene;
 pub mod seed;
 pub mod select;
 pub mod sensor;
+pub mod stress;
 pub mod sweep;

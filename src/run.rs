@@ -14,6 +14,7 @@ use crate::model::{DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 use crate::sensor::probe::{ArmState, PointLoad};
 use crate::sensor::{Sensor, SensorProbe};
+use crate::stress::StressProbe;
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -60,6 +61,8 @@ pub struct Series {
     pub layout: Option<SceneLayout>,
     /// Each sensor's two channels per step, in the model's sensor order.
     pub sensors: Vec<SensorSeries>,
+    /// Section forces along the arm and the pin loads per step (empty when not read).
+    pub stress: crate::stress::StressSeries,
 }
 
 /// One sensor's readings per step.
@@ -110,11 +113,14 @@ pub struct RunOptions {
     pub capture_frames: bool,
     /// Rate of 3D frames without contact, Hz.
     pub frame_rate_hz: f64,
+    /// Recover the stresses along the arm and the pin loads every step, and sign the run off
+    /// (stress, fatigue, pins in the summary).
+    pub sign_off: bool,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false, frame_rate_hz: 10.0 }
+        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false, frame_rate_hz: 10.0, sign_off: true }
     }
 }
 
@@ -220,6 +226,15 @@ pub struct RunSummary {
     /// Each sensor's peaks (left out of the file when the scenario has none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSummary>,
+    /// The stresses along the arm and their utilisation (`docs/sign-off.md`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<crate::stress::StressSummary>,
+    /// The fatigue damage of the lift.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<crate::stress::FatigueSummary>,
+    /// The peak loads on the pivot, the cylinder's pin and the hands.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub pins: Option<crate::stress::PinSummary>,
 }
 
 /// A sensor's peak readings.
@@ -367,17 +382,29 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
+    let mut stress = options.sign_off.then(|| {
+        let probe = StressProbe::new(model, &scene.arm.arm, &scene);
+        let hands: Vec<String> =
+            model.payload.string().map(|s| s.grips.iter().map(|g| g.hand.clone()).collect()).unwrap_or_default();
+        series.stress = probe.series(steps, &hands);
+        probe
+    });
+    let g = model.physics.gravity_m_s2;
     let mut trackers = vec![ImpactTracker::default(); pads];
     if options.capture_frames {
         series.layout = Some(scene.layout());
     }
     let mut keeper = Keeper::new(options, pads);
+    let mut signed_off = None;
     let started = Instant::now();
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
     record(&scene, &first, series, &mut trackers);
     read_sensors(&scene, &probes, series);
-    read_string(&scene, model.physics.gravity_m_s2, series);
+    read_string(&scene, g, series);
+    if let Some(probe) = &mut stress {
+        probe.read(&scene, &first, g, &mut series.stress.values);
+    }
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
@@ -407,11 +434,25 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         }
         record(&scene, &sample, series, &mut trackers);
         read_sensors(&scene, &probes, series);
-        read_string(&scene, model.physics.gravity_m_s2, series);
+        read_string(&scene, g, series);
+        if let Some(probe) = &mut stress {
+            probe.read(&scene, &sample, g, &mut series.stress.values);
+        }
         keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
+    }
+    if stress.is_some() {
+        let readings =
+            crate::stress::Readings { series: &series.stress, t_s: &series.t_s, hub_angle_rad: &series.hub_angle_rad };
+        let signed = crate::stress::sign_off(model, &readings, &series.sensors, model.checks.stress_factor);
+        signed_off = Some(signed);
     }
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
+    if let Some(signed) = signed_off {
+        summary.stress = Some(signed.stress);
+        summary.fatigue = Some(signed.fatigue);
+        summary.pins = Some(signed.pins);
+    }
     summary.model_reason = choice.reason;
     if let Some(choice) = string_choice {
         let (t, tip, stress) = (&series.t_s, &series.string_tip_deflection_m, &series.string_stress_pa);
@@ -681,5 +722,8 @@ fn summarize(
             max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
         }),
         string: None,
+        stress: None,
+        fatigue: None,
+        pins: None,
     })
 }

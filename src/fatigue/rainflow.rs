@@ -127,9 +127,8 @@ mod tests {
         // whatever the sampling (here 37 points a period, none on a valley exactly).
         let (k, mean, range) = (25, 40e6, 120e6);
         let n = 37 * k;
-        let history: Vec<f64> = (0..=n)
-            .map(|i| mean + 0.5 * range * (2.0 * std::f64::consts::PI * i as f64 / 37.0).cos())
-            .collect();
+        let history: Vec<f64> =
+            (0..=n).map(|i| mean + 0.5 * range * (2.0 * std::f64::consts::PI * i as f64 / 37.0).cos()).collect();
         let cycles = count(&history);
         let at_range: f64 = cycles.iter().filter(|c| (c.range / range - 1.0).abs() < 1e-2).map(|c| c.count).sum();
         assert_eq!(at_range, k as f64);
@@ -186,7 +185,8 @@ mod tests {
             // residue of r points is r - 1 halves: 2 x (cycles counted) = reversals - 1.
             let total: f64 = cycles.iter().map(|c| c.count).sum();
             assert_eq!(2.0 * total, (points - 1) as f64);
-            let span = history.iter().copied().fold(f64::MIN, f64::max) - history.iter().copied().fold(f64::MAX, f64::min);
+            let span =
+                history.iter().copied().fold(f64::MIN, f64::max) - history.iter().copied().fold(f64::MAX, f64::min);
             let largest = cycles.iter().map(|c| c.range).fold(0.0, f64::max);
             assert_eq!(largest, span);
         }

@@ -181,9 +181,8 @@ mod tests {
         // Table 2-1's last column: the range at 1e7 cycles, MPa. Both of each curve's lines must
         // meet there: a check of every transcribed log ā (to the table's rounding: log ā to three
         // decimals moves the range by 10^(0.0005/3) - 1 = 4e-4, the limits to two decimals).
-        let limits = [
-            106.97, 93.59, 73.10, 65.50, 58.48, 52.63, 46.78, 41.52, 36.84, 32.75, 29.24, 26.32, 23.39, 21.05,
-        ];
+        let limits =
+            [106.97, 93.59, 73.10, 65.50, 58.48, 52.63, 46.78, 41.52, 36.84, 32.75, 29.24, 26.32, 23.39, 21.05];
         for (curve, limit) in DNV_CURVES_IN_AIR.iter().zip(limits) {
             let at_knee = 10f64.powf((curve.log_a1 - 7.0) / curve.m1);
             assert!((at_knee / limit - 1.0).abs() < 6e-4, "{}: {at_knee} vs {limit}", curve.name);

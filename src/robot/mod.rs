@@ -41,6 +41,8 @@ pub struct ArmSegment {
     pub section: SectionShape,
     /// Material.
     pub material: Material,
+    /// Its yield strength and welded detail, for the sign-off ([`crate::stress`]).
+    pub checks: crate::stress::SegmentChecks,
 }
 
 /// The flexible link's parameters (`<pipearm:flexible>` in the URDF).
