@@ -400,46 +400,47 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
     record(&scene, &first, series, &mut trackers);
-    read_sensors(&scene, &probes, series);
-    read_string(&scene, g, series);
-    if let Some(probe) = &mut stress {
-        probe.read(&scene, &first, g, &mut series.stress.values);
-    }
+    read_state(&scene, &first, g, (&probes, stress.as_mut()), series);
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
-    // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
-    // be a step too short to take.
-    let sliver = 1e-6 * h;
-    // The free-motion step the error control proposes next (it restarts from `h` after contact).
-    let mut free_h = h;
-    while end - scene.arm.time_s() > sliver {
-        let remaining = end - scene.arm.time_s();
-        let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
-        steps += 1;
-        match &control {
-            Some(control) if scene.free_step_allowed(free_h) => {
-                let (_, next) =
-                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
-                free_h = next;
+    let mut step_loop = || -> Result<(), SceneError> {
+        // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
+        // be a step too short to take.
+        let sliver = 1e-6 * h;
+        // The free-motion step the error control proposes next (it restarts from `h` after contact).
+        let mut free_h = h;
+        while end - scene.arm.time_s() > sliver {
+            let remaining = end - scene.arm.time_s();
+            let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
+            steps += 1;
+            match &control {
+                Some(control) if scene.free_step_allowed(free_h) => {
+                    let (_, next) =
+                        scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
+                    free_h = next;
+                }
+                _ => {
+                    scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
+                    free_h = h;
+                }
             }
-            _ => {
-                scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
-                free_h = h;
+            let sample = scene.arm.sample();
+            guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
+            if let Some(what) = scene.fault() {
+                return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
             }
+            record(&scene, &sample, series, &mut trackers);
+            read_state(&scene, &sample, g, (&probes, stress.as_mut()), series);
+            keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
         }
-        let sample = scene.arm.sample();
-        guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
-        if let Some(what) = scene.fault() {
-            return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
-        }
-        record(&scene, &sample, series, &mut trackers);
-        read_sensors(&scene, &probes, series);
-        read_string(&scene, g, series);
-        if let Some(probe) = &mut stress {
-            probe.read(&scene, &sample, g, &mut series.stress.values);
-        }
-        keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
+        Ok(())
+    };
+    let looped = step_loop();
+    // The readings of the last steps are completed whether the run finished or not.
+    if let Some(probe) = &mut stress {
+        probe.finish(&mut series.stress);
     }
+    looped?;
     if stress.is_some() {
         let readings =
             crate::stress::Readings { series: &series.stress, t_s: &series.t_s, hub_angle_rad: &series.hub_angle_rad };
@@ -603,24 +604,41 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
 }
 
-/// The held string's tip deflection and stress at the scene's current state.
-fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
-    let Some(probe) = &scene.string else { return };
-    let (hub, q, qd) = scene.arm.kinematics();
-    let qdd = scene.arm.elastic_accelerations();
-    let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
-    series.string_tip_deflection_m.push(reading.tip_deflection_m);
-    series.string_stress_pa.push(reading.max_bending_stress_pa);
-}
-
-/// Each sensor's reading at the scene's current state.
-fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
-    if probes.is_empty() {
+/// What the sensors, the string's probe and the stress probe read at the scene's current state,
+/// whose sample is `sample`.
+fn read_state(
+    scene: &Scene,
+    sample: &ArmSample,
+    g: f64,
+    (probes, stress): (&[SensorProbe], Option<&mut StressProbe>),
+    series: &mut Series,
+) {
+    if probes.is_empty() && scene.string.is_none() && stress.is_none() {
         return;
     }
     let (hub, q, qd) = scene.arm.kinematics();
     let qdd = scene.arm.elastic_accelerations();
     let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
+    read_sensors(scene, probes, &state, series);
+    read_string(scene, &state, g, series);
+    if let Some(probe) = stress {
+        probe.read_at(scene, &state, sample, g, &mut series.stress);
+    }
+}
+
+/// The held string's tip deflection and stress at `state`.
+fn read_string(scene: &Scene, state: &ArmState, gravity_m_s2: f64, series: &mut Series) {
+    let Some(probe) = &scene.string else { return };
+    let reading = probe.read(state, gravity_m_s2);
+    series.string_tip_deflection_m.push(reading.tip_deflection_m);
+    series.string_stress_pa.push(reading.max_bending_stress_pa);
+}
+
+/// Each sensor's reading at `state`.
+fn read_sensors(scene: &Scene, probes: &[SensorProbe], state: &ArmState, series: &mut Series) {
+    if probes.is_empty() {
+        return;
+    }
     let loads: Vec<PointLoad> = scene
         .pairs()
         .filter(|p| p.force_n > 0.0 && p.side == crate::scene::Side::Arm)
@@ -631,7 +649,7 @@ fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
         })
         .collect();
     for (probe, out) in probes.iter().zip(&mut series.sensors) {
-        out.values.push(probe.read(&state, &loads));
+        out.values.push(probe.read(state, &loads));
     }
 }
 

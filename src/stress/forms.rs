@@ -18,7 +18,10 @@
 //! z = [ q̈ | θ̇ q̇ | q | θ̈ q | θ̇² q | g cos θ q | g sin θ q | θ̈, θ̇², g cos θ, g sin θ ]
 //! ```
 //!
-//! The `q` block carries the elastic forces a curvature gives (a string's span moments).
+//! The `q` block carries the elastic forces a curvature gives (a string's span moments). A form
+//! may also read `extra` values after z: the loads a flexible string puts on its hands, which
+//! are themselves forms over z, read first (the arm's sections then need only the arm's
+//! coordinates, a fraction of a string's).
 
 use nalgebra::DVector;
 
@@ -53,11 +56,13 @@ pub enum Block {
     Scaled(Scalar),
 }
 
-/// The layout of z for `n` elastic coordinates.
+/// The layout of z for `n` elastic coordinates, and `extra` values read after it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Layout {
     /// Elastic coordinates.
     pub n: usize,
+    /// Values after z.
+    pub extra: usize,
 }
 
 /// A row over z.
@@ -65,8 +70,20 @@ pub type Form = DVector<f64>;
 
 impl Layout {
     /// Length of z.
-    pub fn len(&self) -> usize {
+    pub fn z_len(&self) -> usize {
         7 * self.n + SCALARS.len()
+    }
+
+    /// Length of a form: z and the extra values.
+    pub fn len(&self) -> usize {
+        self.z_len() + self.extra
+    }
+
+    /// A form reading extra value `i` alone.
+    pub fn extra_value(&self, i: usize) -> Form {
+        let mut f = self.zero();
+        f[self.z_len() + i] = 1.0;
+        f
     }
 
     /// A zero form.
@@ -94,18 +111,17 @@ impl Layout {
         let (w, alpha) = (hub.rate_rad_s, hub.accel_rad_s2);
         let scalars = [alpha, w * w, g * c, g * s];
         let n = self.n;
-        z[..n].copy_from_slice(qdd);
-        for i in 0..n {
-            z[n + i] = w * qd[i];
-            z[2 * n + i] = q[i];
-        }
-        for (k, scale) in scalars.iter().enumerate() {
-            let start = (3 + k) * n;
-            for i in 0..n {
-                z[start + i] = scale * q[i];
+        let (blocks, tail) = z.split_at_mut(7 * n);
+        let mut chunks = blocks.chunks_exact_mut(n.max(1));
+        if n > 0 {
+            chunks.next().expect("q̈").copy_from_slice(qdd);
+            chunks.next().expect("θ̇ q̇").iter_mut().zip(qd).for_each(|(z, v)| *z = w * v);
+            chunks.next().expect("q").copy_from_slice(q);
+            for (chunk, scale) in chunks.zip(scalars) {
+                chunk.iter_mut().zip(q).for_each(|(z, v)| *z = scale * v);
             }
         }
-        z[7 * n..].copy_from_slice(&scalars);
+        tail.copy_from_slice(&scalars);
     }
 
     /// Adds `coefficient` × `row` (over q) into `block` of `form`.
@@ -205,22 +221,37 @@ impl Action {
     /// Adds `other` acting at `from`, moved to act at `to`: the same force, and its moment about
     /// `to` (the lever (x_from − x_to + Δu, Δv) to first order).
     pub fn add_moved(&mut self, layout: &Layout, other: &Action, from: &Point, to: &Point) {
-        self.fx += &other.fx;
-        self.fy += &other.fy;
-        self.m += &other.m;
-        self.m.axpy(from.x_m - to.x_m, &other.fy, 1.0);
+        self.add_moved_reading(layout, other, other, from, to);
+    }
+
+    /// [`Self::add_moved`] for an action read as `reading` (the extra values that hold it) whose
+    /// zeroth-order part is `other`'s: the levers need the load's O(1) part as a form over z.
+    pub fn add_moved_reading(&mut self, layout: &Layout, reading: &Action, other: &Action, from: &Point, to: &Point) {
+        self.fx += &reading.fx;
+        self.fy += &reading.fy;
+        self.m += &reading.m;
+        self.m.axpy(from.x_m - to.x_m, &reading.fy, 1.0);
         let du = from.u() - to.u();
         let dv = from.v() - to.v();
         layout.add_lever(&mut self.m, &du, layout.zeroth(&other.fy), 1.0);
         layout.add_lever(&mut self.m, &dv, layout.zeroth(&other.fx), -1.0);
     }
 
-    /// Scales every part by `k`.
-    pub fn scaled(mut self, k: f64) -> Self {
-        self.fx *= k;
-        self.fy *= k;
-        self.m *= k;
-        self
+    /// Adds `other`, acting at the same point.
+    pub fn add(&mut self, other: &Action) {
+        self.fx += &other.fx;
+        self.fy += &other.fy;
+        self.m += &other.m;
+    }
+
+    /// The moment about `to` of this action, which acts about the pivot's point (x = 0, no
+    /// displacement): M − r_to × F to first order.
+    pub fn moment_about(&self, layout: &Layout, to: &Point) -> Form {
+        let mut m = self.m.clone();
+        m.axpy(-to.x_m, &self.fy, 1.0);
+        layout.add_lever(&mut m, to.u(), layout.zeroth(&self.fy), -1.0);
+        layout.add_lever(&mut m, to.v(), layout.zeroth(&self.fx), 1.0);
+        m
     }
 
     /// The axial force (tension positive) this action, applied to the part outboard of a section
@@ -229,6 +260,11 @@ impl Action {
         let mut n = self.fx.clone();
         layout.add_lever(&mut n, at.phi(), layout.zeroth(&self.fy), 1.0);
         n
+    }
+
+    /// The action read from extra values `first`, `first + 1`, `first + 2` (x, y, moment).
+    pub fn reading(layout: &Layout, first: usize) -> Self {
+        Action { fx: layout.extra_value(first), fy: layout.extra_value(first + 1), m: layout.extra_value(first + 2) }
     }
 }
 
@@ -243,7 +279,7 @@ mod tests {
 
     /// Evaluates a form at a state.
     fn at(layout: &Layout, form: &Form, hub: &DriveState, g: f64, q: &[f64], qd: &[f64], qdd: &[f64]) -> f64 {
-        let mut z = vec![0.0; layout.len()];
+        let mut z = vec![0.0; layout.z_len()];
         layout.fill(&mut z, hub, g, q, qd, qdd);
         form.dot(&DVector::from_vec(z))
     }
@@ -252,7 +288,7 @@ mod tests {
     fn a_mass_loads_its_section_as_the_exact_kinematics_do_to_first_order() {
         // The exact d'Alembert + gravity load of a mass point and its moment about a section
         // point, evaluated from the full kinematics, against the forms at a small deflection.
-        let layout = Layout { n: 2 };
+        let layout = Layout { n: 2, extra: 0 };
         let (p, s) = (point(6.0, 0.2, 1.0, 0.15), point(2.0, 0.05, 0.2, 0.08));
         let hub = DriveState { angle_rad: 0.7, rate_rad_s: 0.3, accel_rad_s2: -0.4, jerk_rad_s3: 0.0 };
         let g = 9.81;

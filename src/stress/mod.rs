@@ -72,6 +72,8 @@ pub struct StressProbe {
     scratch: recovery::Scratch,
     on_arm: Vec<PointLoad>,
     on_string: Vec<PointLoad>,
+    /// The readings of the steps whose linear part is not evaluated yet.
+    pending: Vec<f64>,
 }
 
 /// Values per step after the recovery's: the cylinder pin's force on the arm, world X, Y, N.
@@ -94,7 +96,9 @@ pub struct StressSeries {
     /// `width` values per step, one step after another: per station (axial force N, bending
     /// moment N·m), the pivot's force on the arm (hub frame, N), per hand of a flexible string
     /// its load on the hand (hub frame x, y, N; moment, N·m), the cylinder pin's force (world, N).
-    pub values: Vec<f64>,
+    /// Single precision (seven digits): a run's histories at every section are its largest
+    /// series, and the extremes are taken in double precision as they are read.
+    pub values: Vec<f32>,
     /// Values per step.
     pub width: usize,
     /// The stations, hub outwards.
@@ -105,6 +109,27 @@ pub struct StressSeries {
     pub hands: Vec<(String, usize)>,
     /// Where the cylinder pin's force starts (`None` without a cylinder).
     pub cylinder_index: Option<usize>,
+    /// Per station and fibre (upper, lower), the largest and smallest σ over the steps read, Pa.
+    pub extremes: Vec<[Extremes; 2]>,
+}
+
+/// The largest and smallest σ at a station's fibre, Pa.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremes {
+    /// Largest σ.
+    pub max: f64,
+    /// Smallest σ.
+    pub min: f64,
+}
+
+impl Extremes {
+    /// None yet.
+    pub const NONE: Extremes = Extremes { max: f64::MIN, min: f64::MAX };
+
+    /// The larger of |max| and |min|.
+    pub fn peak_abs(&self) -> f64 {
+        self.max.abs().max(self.min.abs())
+    }
 }
 
 impl StressSeries {
@@ -113,10 +138,29 @@ impl StressSeries {
         self.values.len() / self.width.max(1)
     }
 
+    /// Appends the readings `steps` (`width` values a step), taking their σ into `extremes`.
+    fn append(&mut self, steps: &[f64]) {
+        for step in steps.chunks_exact(self.width) {
+            for ((station, forces), e) in self.stations.iter().zip(step.chunks_exact(2)).zip(self.extremes.iter_mut()) {
+                let axial = forces[0] * station.fibres.per_axial_force_per_m2;
+                let bending = forces[1] * station.fibres.per_moment_per_m3;
+                for (e, s) in e.iter_mut().zip([axial + bending, axial - bending]) {
+                    if s > e.max {
+                        e.max = s;
+                    }
+                    if s < e.min {
+                        e.min = s;
+                    }
+                }
+            }
+        }
+        self.values.extend(steps.iter().map(|v| *v as f32));
+    }
+
     /// σ at station `i`, `fibre`, step `k`, Pa.
     pub fn stress_pa(&self, i: usize, fibre: Fibre, k: usize) -> f64 {
         let at = k * self.width + 2 * i;
-        self.stations[i].fibres.stress_pa(fibre, self.values[at], self.values[at + 1])
+        self.stations[i].fibres.stress_pa(fibre, self.values[at].into(), self.values[at + 1].into())
     }
 }
 
@@ -150,6 +194,7 @@ impl StressProbe {
             scratch: recovery::Scratch::default(),
             on_arm: Vec::new(),
             on_string: Vec::new(),
+            pending: Vec::new(),
         }
     }
 
@@ -177,15 +222,21 @@ impl StressProbe {
                 .map(|h| (hands.get(h).cloned().unwrap_or_else(|| format!("hand {h}")), self.recovery.hand_index(h)))
                 .collect(),
             cylinder_index: self.cylinder.is_some().then(|| self.recovery.width()),
+            extremes: vec![[Extremes::NONE; 2]; self.recovery.stations.len()],
         }
     }
 
     /// Appends the reading at the scene's current state, whose sample is `sample`, under gravity
-    /// `g` to `out`.
-    pub fn read(&mut self, scene: &Scene, sample: &ArmSample, g: f64, out: &mut Vec<f64>) {
+    /// `g` to `series` (made by [`Self::series`]).
+    pub fn read(&mut self, scene: &Scene, sample: &ArmSample, g: f64, series: &mut StressSeries) {
         let (hub, q, qd) = scene.arm.kinematics();
         let qdd = scene.arm.elastic_accelerations();
-        let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
+        self.read_at(scene, &ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, sample, g, series);
+    }
+
+    /// [`Self::read`] with the scene's state already at hand.
+    pub fn read_at(&mut self, scene: &Scene, state: &ArmState, sample: &ArmSample, g: f64, series: &mut StressSeries) {
+        let (hub, q, qd) = (state.hub, state.q, state.qd);
         let (s, c) = hub.angle_rad.sin_cos();
         let to_hub = |[x, y]: [f64; 2]| [c * x + s * y, -s * x + c * y];
         self.on_arm.clear();
@@ -216,10 +267,22 @@ impl StressProbe {
             self.on_arm.push(PointLoad { station_m: ax, point_m, force_n });
             pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
         }
+        if self.recovery.due(&self.scratch) {
+            self.finish(series);
+        }
+        let out = &mut self.pending;
         let start = out.len();
         out.resize(start + self.recovery.width(), 0.0);
-        self.recovery.read_into(&state, g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
+        self.recovery.stage(state, g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
         out.extend_from_slice(&pin_world);
+    }
+
+    /// Completes the readings in `series`: call once after the last read, and before using it.
+    pub fn finish(&mut self, series: &mut StressSeries) {
+        let stride = self.width();
+        self.recovery.flush(&mut self.scratch, &mut self.pending, stride);
+        series.append(&self.pending);
+        self.pending.clear();
     }
 }
 

@@ -19,6 +19,7 @@ use nalgebra::{DMatrix, DVector};
 
 use super::forms::{Action, Block, Form, Layout, Point};
 use crate::arm::ArmModel;
+use crate::arm::StationRows;
 use crate::beam::GAUSS_4;
 use crate::sensor::probe::ArmState;
 
@@ -95,26 +96,41 @@ pub struct SectionRecovery {
     layout: Layout,
     /// Sections, hub outwards.
     pub stations: Vec<Station>,
-    /// Rows over z: per station (N, M), then the pivot's force on the arm (x, y, hub frame),
-    /// then per hand of a flexible string the string's load on it (x, y, moment about it).
+    /// The string's loads on its hands (x, y, moment per hand) over the entries of z in
+    /// `hand_support`.
+    hand_rows: DMatrix<f64>,
+    hand_support: Vec<usize>,
+    /// Per station (N, M), then the pivot's force on the arm (x, y, hub frame), over the entries
+    /// of z and of the hand loads in `support`.
     rows: DMatrix<f64>,
+    /// The entries of z followed by the hand loads that `rows` read (the arm's sections do not
+    /// see a string's own coordinates but through its hands).
+    support: Vec<usize>,
     string: Option<StringRouting>,
     tolerance_m: f64,
     /// Where a rigid string's contact loads reach the arm: its centre station, m.
     rigid_string_centre_m: Option<f64>,
 }
 
-/// Scratch of a reading: z and the step's point loads.
+/// Steps read before their linear part is evaluated, as one matrix product.
+const CHUNK_STEPS: usize = 64;
+
+/// The readings waiting for their linear part: z of each, the step's point loads.
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
-    z: DVector<f64>,
+    z: DMatrix<f64>,
+    hand_z: DMatrix<f64>,
+    hands: DMatrix<f64>,
+    read: DMatrix<f64>,
+    pending: usize,
     loads: Vec<PointLoad>,
 }
 
 impl SectionRecovery {
     /// The recovery on `arm` at the sections `stations` (built by [`stations_of`]).
     pub fn new(arm: &ArmModel, stations: Vec<Station>, rigid_string_centre_m: Option<f64>) -> Self {
-        let layout = Layout { n: arm.elastic_dofs() };
+        let hand_count = arm.beam.member.as_ref().map_or(0, |m| m.spec.clamps_m.len());
+        let layout = Layout { n: arm.elastic_dofs(), extra: 3 * hand_count };
         let tolerance_m = 1e-9 * arm.length_m();
         let masses = arm_mass_points(arm, &layout);
         let (hand_actions, string) = match &arm.beam.member {
@@ -125,35 +141,60 @@ impl SectionRecovery {
             None => (Vec::new(), None),
         };
         let hands: Vec<&Hand> = string.iter().flat_map(|s| &s.hands).collect();
-        let mut forms: Vec<Form> = Vec::new();
-        for station in &stations {
-            let mut outboard = Action::zero(&layout);
-            for (x, point, action) in &masses {
-                if station.has_outboard(*x, tolerance_m) {
-                    outboard.add_moved(&layout, action, point, &station.point);
-                }
+        let readings: Vec<Action> = (0..hand_count).map(|h| Action::reading(&layout, 3 * h)).collect();
+        // The loads outboard of each station, summed once from the tip inward about the pivot's
+        // point and moved to each station: M_s = M_0 − r_s × F.
+        let origin = Point { x_m: 0.0, rows: StationRows([0, 1, 2].map(|_| DVector::zeros(layout.n))) };
+        let mut loads: Vec<(f64, Action)> = masses
+            .iter()
+            .map(|(x, point, action)| {
+                let mut about_origin = Action::zero(&layout);
+                about_origin.add_moved(&layout, action, point, &origin);
+                (*x, about_origin)
+            })
+            .collect();
+        for ((hand, action), reading) in hands.iter().zip(&hand_actions).zip(&readings) {
+            let mut about_origin = Action::zero(&layout);
+            about_origin.add_moved_reading(&layout, reading, action, &hand.point, &origin);
+            loads.push((hand.point.x_m, about_origin));
+        }
+        loads.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let mut outboard = Action::zero(&layout);
+        let mut next = 0;
+        let mut forms: Vec<Form> = vec![layout.zero(); 2 * stations.len()];
+        for (i, station) in stations.iter().enumerate().rev() {
+            while next < loads.len() && station.has_outboard(loads[next].0, tolerance_m) {
+                outboard.add(&loads[next].1);
+                next += 1;
             }
-            for (hand, action) in hands.iter().zip(&hand_actions) {
-                if station.has_outboard(hand.point.x_m, tolerance_m) {
-                    outboard.add_moved(&layout, action, &hand.point, &station.point);
-                }
-            }
-            forms.push(outboard.axial_through(&layout, &station.point));
-            forms.push(-outboard.m);
+            forms[2 * i] = outboard.axial_through(&layout, &station.point);
+            forms[2 * i + 1] = -outboard.moment_about(&layout, &station.point);
         }
         // The pivot holds everything: its force on the arm balances the loads on the whole.
         let mut whole = Action::zero(&layout);
-        for action in masses.iter().map(|(_, _, a)| a).chain(&hand_actions) {
+        for action in masses.iter().map(|(_, _, a)| a).chain(&readings) {
             whole.fx += &action.fx;
             whole.fy += &action.fy;
         }
         forms.push(-whole.fx);
         forms.push(-whole.fy);
-        for action in &hand_actions {
-            forms.extend([action.fx.clone(), action.fy.clone(), action.m.clone()]);
+        let support: Vec<usize> = (0..layout.len()).filter(|&c| forms.iter().any(|f| f[c] != 0.0)).collect();
+        let rows = DMatrix::from_fn(forms.len(), support.len(), |r, c| forms[r][support[c]]);
+        let hand_forms: Vec<&Form> = hand_actions.iter().flat_map(|a| [&a.fx, &a.fy, &a.m]).collect();
+        let hand_support: Vec<usize> =
+            (0..layout.z_len()).filter(|&c| hand_forms.iter().any(|f| f[c] != 0.0)).collect();
+        let hand_rows = DMatrix::from_fn(hand_forms.len(), hand_support.len(), |r, c| hand_forms[r][hand_support[c]]);
+        SectionRecovery {
+            layout,
+            stations,
+            hand_rows,
+            hand_support,
+            rows,
+            support,
+            string,
+            tolerance_m,
+            rigid_string_centre_m,
         }
-        let rows = DMatrix::from_fn(forms.len(), layout.len(), |r, c| forms[r][c]);
-        SectionRecovery { layout, stations, rows, string, tolerance_m, rigid_string_centre_m }
     }
 
     /// Hands of a flexible string, in the order of their loads in a reading.
@@ -165,7 +206,7 @@ impl SectionRecovery {
     /// pivot's force on the arm (x, y hub frame, N), per hand of a flexible string the string's
     /// load on it (x, y hub frame, N; moment about it, N·m).
     pub fn width(&self) -> usize {
-        self.rows.nrows()
+        self.rows.nrows() + self.hand_rows.nrows()
     }
 
     /// Where the pivot's force starts in a reading.
@@ -178,9 +219,11 @@ impl SectionRecovery {
         2 * self.stations.len() + 2 + 3 * h
     }
 
-    /// Writes the reading at `state` under gravity `g` into `out` ([`Self::width`] values), with
-    /// point loads on the arm `on_arm` and on the held string `on_string`.
-    pub fn read_into(
+    /// Reads the state `state` under gravity `g`, with point loads on the arm `on_arm` and on
+    /// the held string `on_string`, into `out` ([`Self::width`] zeros): the point loads' share
+    /// now, the rest at the next [`Self::flush`] of the readings in `scratch`, which must come
+    /// within [`Self::due`].
+    pub fn stage(
         &self,
         state: &ArmState,
         g: f64,
@@ -189,15 +232,17 @@ impl SectionRecovery {
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
-        let z = &mut scratch.z;
-        if z.len() != self.layout.len() {
-            *z = DVector::zeros(self.layout.len());
+        if scratch.z.nrows() != self.layout.z_len() {
+            scratch.z = DMatrix::zeros(self.layout.z_len(), CHUNK_STEPS);
+            scratch.hands = DMatrix::zeros(self.hand_rows.nrows(), CHUNK_STEPS);
+            scratch.hand_z = DMatrix::zeros(self.hand_support.len(), CHUNK_STEPS);
+            scratch.read = DMatrix::zeros(self.support.len(), CHUNK_STEPS);
+            scratch.pending = 0;
         }
-        let hub = &state.hub;
-        self.layout.fill(z.as_mut_slice(), hub, g, state.q.as_slice(), state.qd.as_slice(), state.qdd.as_slice());
-        let width = out.len();
-        let mut values = nalgebra::DVectorViewMut::from_slice(out, width);
-        values.gemv(1.0, &self.rows, z, 0.0);
+        let z_len = self.layout.z_len();
+        let column = &mut scratch.z.as_mut_slice()[scratch.pending * z_len..(scratch.pending + 1) * z_len];
+        self.layout.fill(column, &state.hub, g, state.q.as_slice(), state.qd.as_slice(), state.qdd.as_slice());
+        scratch.pending += 1;
         scratch.loads.clear();
         scratch.loads.extend_from_slice(on_arm);
         for load in on_string {
@@ -205,6 +250,41 @@ impl SectionRecovery {
         }
         for load in &scratch.loads {
             self.add_point_load(state, load, out);
+        }
+    }
+
+    /// Whether the staged readings must be flushed before the next.
+    pub fn due(&self, scratch: &Scratch) -> bool {
+        scratch.pending == CHUNK_STEPS
+    }
+
+    /// Adds the linear part of the staged readings to the last of `values`, `stride` values a
+    /// step (each step's reading first in its stride).
+    pub fn flush(&self, scratch: &mut Scratch, values: &mut [f64], stride: usize) {
+        let p = scratch.pending;
+        if p == 0 {
+            return;
+        }
+        scratch.pending = 0;
+        let z_len = self.layout.z_len();
+        gather(&scratch.z, &self.hand_support, p, &mut scratch.hand_z);
+        scratch.hands.columns_mut(0, p).gemm(1.0, &self.hand_rows, &scratch.hand_z.columns(0, p), 0.0);
+        let (z, hands, read) = (scratch.z.as_slice(), scratch.hands.as_slice(), scratch.read.as_mut_slice());
+        let (height, width) = (self.hand_rows.nrows(), self.support.len());
+        for k in 0..p {
+            for (r, &c) in read[k * width..(k + 1) * width].iter_mut().zip(&self.support) {
+                *r = if c < z_len { z[k * z_len + c] } else { hands[k * height + c - z_len] };
+            }
+        }
+        let start = values.len() - p * stride;
+        let rows = self.rows.nrows();
+        let mut sections =
+            nalgebra::DMatrixViewMut::from_slice_with_strides_mut(&mut values[start..], rows, p, 1, stride);
+        sections.gemm(1.0, &self.rows, &scratch.read.columns(0, p), 1.0);
+        let (hands, height) = (scratch.hands.as_slice(), self.hand_rows.nrows());
+        for (k, step) in values[start..].chunks_mut(stride).enumerate() {
+            let loads = &mut step[rows..rows + height];
+            loads.iter_mut().zip(&hands[k * height..(k + 1) * height]).for_each(|(v, h)| *v += h);
         }
     }
 
@@ -276,7 +356,7 @@ impl SectionRecovery {
 /// The arm's mass as loaded points: four Gauss points per element and the carried bodies, each
 /// with its station, point and load.
 fn arm_mass_points(arm: &ArmModel, layout: &Layout) -> Vec<(f64, Point, Action)> {
-    let point = |x_m: f64| Point { x_m, rows: arm.station_rows(x_m) };
+    let point = |x_m: f64| arm_point(arm, x_m);
     let mut out = Vec::new();
     for element in &arm.beam.elements {
         for (xi, weight) in GAUSS_4 {
@@ -302,7 +382,13 @@ fn string_hand_loads(
     layout: &Layout,
     member: &crate::beam::MemberModel,
 ) -> (Vec<Action>, StringRouting) {
-    let string_point = |x_m: f64| Point { x_m, rows: arm.string_station_rows(x_m).expect("a flexible string") };
+    let string_point = |x_m: f64| {
+        let x = x_m.clamp(member.spec.start_m, member.spec.end_m());
+        let e = member.elements.iter().position(|el| x <= el.x0_m + el.length_m).unwrap_or(member.elements.len() - 1);
+        let el = &member.elements[e];
+        let shape = crate::beam::shape_rows((x - el.x0_m) / el.length_m, el.length_m);
+        Point { x_m, rows: project(arm, &member.element_dofs[e], [&shape.u, &shape.v, &shape.dv]) }
+    };
     let clamps = &member.spec.clamps_m;
     let hands: Vec<Hand> = clamps.iter().map(|&x| Hand { point: string_point(x) }).collect();
     let mut actions: Vec<Action> = hands.iter().map(|_| Action::zero(layout)).collect();
@@ -398,11 +484,7 @@ pub fn stations_of(arm: &ArmModel, segment_ends_m: &[f64], extra_breaks_m: &[f64
     breaks.extend(beam.spec.masses.iter().map(|m| m.position_m));
     breaks.extend(beam.member.iter().flat_map(|m| m.spec.clamps_m.iter().copied()));
     breaks.extend_from_slice(extra_breaks_m);
-    let station = |x: f64, side: Side| Station {
-        point: Point { x_m: x, rows: arm.station_rows(x) },
-        side,
-        segment: segment_of(x, side),
-    };
+    let station = |x: f64, side: Side| Station { point: arm_point(arm, x), side, segment: segment_of(x, side) };
     let mut out = vec![station(0.0, Side::Outboard)];
     let last = beam.nodes_x_m.len() - 1;
     for (j, &x) in beam.nodes_x_m.iter().enumerate().skip(1) {
@@ -412,6 +494,42 @@ pub fn stations_of(arm: &ArmModel, segment_ends_m: &[f64], extra_breaks_m: &[f64
         }
     }
     out
+}
+
+/// The arm's point at station `x_m`: its rows over q, formed from the few DOFs of its element
+/// (the same as [`ArmModel::station_rows`], without a product over every DOF).
+fn arm_point(arm: &ArmModel, x_m: f64) -> Point {
+    let (dofs, shape) = arm.beam.point_shape(x_m);
+    Point { x_m, rows: project(arm, &dofs, [&shape.u, &shape.v, &shape.dv]) }
+}
+
+/// Rows over q of shape rows on an element's `dofs`: Σ N_i Φ(g_i, ·).
+fn project(arm: &ArmModel, dofs: &[Option<usize>; crate::beam::ELEMENT_DOFS], rows: [&[f64; 6]; 3]) -> StationRows {
+    StationRows(rows.map(|r| {
+        let mut out = DVector::zeros(arm.elastic_dofs());
+        for (g, n) in dofs.iter().zip(r) {
+            if let Some(g) = *g
+                && *n != 0.0
+            {
+                for (j, o) in out.iter_mut().enumerate() {
+                    *o += n * arm.basis[(g, j)];
+                }
+            }
+        }
+        out
+    }))
+}
+
+/// Rows `rows` of the first `columns` columns of `from`, into `to`.
+fn gather(from: &DMatrix<f64>, rows: &[usize], columns: usize, to: &mut DMatrix<f64>) {
+    let (height, width) = (from.nrows(), to.nrows());
+    let (from, to) = (from.as_slice(), to.as_mut_slice());
+    for k in 0..columns {
+        let (source, target) = (&from[k * height..(k + 1) * height], &mut to[k * width..(k + 1) * width]);
+        for (t, &r) in target.iter_mut().zip(rows) {
+            *t = source[r];
+        }
+    }
 }
 
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {

@@ -162,23 +162,6 @@ pub struct SignOff {
     pub pins: PinSummary,
 }
 
-/// A station–fibre's extremes over a run.
-#[derive(Debug, Clone, Copy)]
-struct Extremes {
-    max: (f64, usize),
-    min: (f64, usize),
-}
-
-impl Extremes {
-    fn peak_abs(&self) -> (f64, usize) {
-        if self.max.0.abs() >= self.min.0.abs() {
-            (self.max.0.abs(), self.max.1)
-        } else {
-            (self.min.0.abs(), self.min.1)
-        }
-    }
-}
-
 /// One run's readings at its times and hub angles.
 pub struct Readings<'a> {
     /// The readings and their layout.
@@ -199,7 +182,7 @@ impl Readings<'_> {
     }
 
     fn value(&self, k: usize, at: usize) -> f64 {
-        self.series.values[k * self.width() + at]
+        self.series.values[k * self.width() + at].into()
     }
 
     /// σ at station `i`, `fibre`, step `k`, Pa.
@@ -212,28 +195,19 @@ impl Readings<'_> {
         (0..self.steps()).map(|k| self.stress_pa(i, fibre, k)).collect()
     }
 
-    fn extremes(&self, i: usize, fibre: Fibre) -> Extremes {
-        let mut e = Extremes { max: (f64::MIN, 0), min: (f64::MAX, 0) };
-        for k in 0..self.steps() {
-            let s = self.stress_pa(i, fibre, k);
-            if s > e.max.0 {
-                e.max = (s, k);
-            }
-            if s < e.min.0 {
-                e.min = (s, k);
-            }
-        }
-        e
+    /// The first step at which |σ| at station `i`, `fibre` reaches `peak_abs`.
+    fn step_of_peak(&self, i: usize, fibre: Fibre, peak_abs: f64) -> usize {
+        (0..self.steps()).find(|&k| self.stress_pa(i, fibre, k).abs() >= peak_abs).unwrap_or(0)
     }
 
     /// Per station, the largest and smallest σ over both fibres and the run, Pa: the stress
     /// envelope along the arm.
     pub fn envelope(&self) -> Vec<(f64, f64, f64)> {
-        (0..self.series.stations.len())
-            .map(|i| {
-                let [u, l] = Fibre::BOTH.map(|f| self.extremes(i, f));
-                (self.series.stations[i].station_m, u.max.0.max(l.max.0), u.min.0.min(l.min.0))
-            })
+        self.series
+            .stations
+            .iter()
+            .zip(&self.series.extremes)
+            .map(|(station, [u, l])| (station.station_m, u.max.max(l.max), u.min.min(l.min)))
             .collect()
     }
 
@@ -246,11 +220,13 @@ impl Readings<'_> {
     fn force_peak(&self, at: usize, hub_frame: bool) -> PinPeak {
         let (mut best, mut best_k) = (0.0, 0);
         for k in 0..self.steps() {
-            let magnitude = self.value(k, at).hypot(self.value(k, at + 1));
-            if magnitude > best {
-                (best, best_k) = (magnitude, k);
+            let (x, y) = (self.value(k, at), self.value(k, at + 1));
+            let squared = x * x + y * y;
+            if squared > best {
+                (best, best_k) = (squared, k);
             }
         }
+        let best = best.sqrt();
         let (s, c) = self.hub_angle_rad.get(best_k).copied().unwrap_or(0.0).sin_cos();
         let (fx, fy) =
             if self.steps() == 0 { (0.0, 0.0) } else { (self.value(best_k, at), self.value(best_k, at + 1)) };
@@ -268,8 +244,7 @@ impl Readings<'_> {
 pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], stress_factor: f64) -> SignOff {
     let segments = &model.robot.arm.segments;
     let stations = &readings.series.stations;
-    let extremes: Vec<[Extremes; 2]> =
-        (0..stations.len()).map(|i| Fibre::BOTH.map(|f| readings.extremes(i, f))).collect();
+    let extremes = &readings.series.extremes;
     let mut from = 0.0;
     let mut segment_stress = Vec::new();
     let mut fatigue_places = Vec::new();
@@ -277,23 +252,23 @@ pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], st
     for (s, segment) in segments.iter().enumerate() {
         let to = from + segment.length_m;
         let mine: Vec<usize> = (0..stations.len()).filter(|&i| stations[i].segment == s).collect();
-        let mut peak = (0.0, 0, Fibre::Upper, 0);
+        let mut peak = (0.0, 0, Fibre::Upper);
         let (mut max, mut min) = (f64::MIN, f64::MAX);
         let mut widest = (f64::MIN, 0, Fibre::Upper);
         for &i in &mine {
             for (f, fibre) in Fibre::BOTH.iter().enumerate() {
                 let e = extremes[i][f];
-                let (p, k) = e.peak_abs();
-                if p > peak.0 {
-                    peak = (p, i, *fibre, k);
+                if e.peak_abs() > peak.0 {
+                    peak = (e.peak_abs(), i, *fibre);
                 }
-                max = max.max(e.max.0);
-                min = min.min(e.min.0);
-                if e.max.0 - e.min.0 > widest.0 {
-                    widest = (e.max.0 - e.min.0, i, *fibre);
+                max = max.max(e.max);
+                min = min.min(e.min);
+                if e.max - e.min > widest.0 {
+                    widest = (e.max - e.min, i, *fibre);
                 }
             }
         }
+        let peak_step = readings.step_of_peak(peak.1, peak.2, peak.0);
         let checks = segment.checks;
         let thickness = super::steel::nominal_thickness_m(&segment.section);
         let utilisation = checks.yield_strength.map(|y| stress_factor * peak.0 / y.strength_pa);
@@ -308,7 +283,7 @@ pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], st
             peak_stress_pa: peak.0,
             peak_station_m: stations.get(peak.1).map_or(from, |st| st.station_m),
             peak_fibre: peak.2,
-            peak_time_s: readings.time(peak.3),
+            peak_time_s: readings.time(peak_step),
             max_stress_pa: max,
             min_stress_pa: min,
             yield_strength_pa: checks.yield_strength.map(|y| y.strength_pa),
@@ -429,15 +404,17 @@ fn pins(readings: &Readings) -> PinSummary {
         .map(|(hand, at)| {
             let (mut force, mut moment) = ((0.0, 0), (0.0, 0));
             for k in 0..readings.steps() {
-                let f = readings.value(k, *at).hypot(readings.value(k, at + 1));
+                let (x, y) = (readings.value(k, *at), readings.value(k, at + 1));
+                let squared = x * x + y * y;
                 let m = readings.value(k, at + 2).abs();
-                if f > force.0 {
-                    force = (f, k);
+                if squared > force.0 {
+                    force = (squared, k);
                 }
                 if m > moment.0 {
                     moment = (m, k);
                 }
             }
+            let force = (force.0.sqrt(), force.1);
             HandPeak {
                 hand: hand.clone(),
                 peak_force_n: force.0,
