@@ -101,11 +101,18 @@ fn the_static_arm_held_at_an_angle_balances_as_its_free_body_by_hand() {
         assert!((stress.peak_stress_pa / upper.abs().max(lower.abs()) - 1.0).abs() < 3e-3);
         assert_eq!(stress.peak_station_m, 0.0);
         assert_eq!(stress.peak_fibre, if upper.abs() > lower.abs() { Fibre::Upper } else { Fibre::Lower });
-        // Past the outer hand nothing but the arm's own weight and the gripper hang: zero at the
-        // tip's inboard side but the tip bodies' axial weight.
+        // At the arm's tip only the gripper's hand hangs on: no moment for a string lumped at its
+        // centre; a flexible string's overhang beyond the gripper, w a² / 2 with w its weight
+        // per length across the arm, give or take the span's end moment (w L² / 12 between two
+        // hands held still; the arm's bending turns them a little).
         let tip = series.stress.stations.len() - 1;
         let [_, m_tip] = forces(&series, tip, 0);
-        assert!(m_tip.abs() < 1e-6 * moment, "{m_tip}");
+        let held = model.payload.string().unwrap();
+        let w = held.pipe.pipe.mass_per_length_kg_m * model.physics.gravity_m_s2 * c;
+        let overhang = held.start_m() + held.pipe.length_m - model.robot.arm.length_m();
+        let span = held.grips[1].station_m - held.grips[0].station_m;
+        let expected = if string == Some(Fidelity::Rigid) { 0.0 } else { w * overhang * overhang / 2.0 };
+        assert!((m_tip - expected).abs() < 1e-6 * moment + w * span * span / 12.0, "{string:?}: {m_tip} vs {expected}");
     }
 }
 
@@ -159,6 +166,7 @@ fn the_root_moment_is_the_drive_torque_less_the_hubs_inertia_at_every_step() {
         let expected = series.drive_torque_n_m[k] - j_hub * series.hub_accel_rad_s2[k];
         worst = worst.max((m - expected).abs());
     }
+    println!("root moment against the drive torque: worst {worst:.1} N·m, {:.2e} of the peak", worst / peak);
     assert!(worst < 2e-3 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
@@ -174,6 +182,7 @@ fn the_summation_is_the_strain_gauges_exact_moment_to_second_order() {
     let readings = &series.sensors[0].values;
     let peak = readings.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
     let worst = (0..series.t_s.len()).map(|k| (forces(&series, i, k)[1] - readings[k][0]).abs()).fold(0.0, f64::max);
+    println!("summation against the gauge: worst {worst:.2} N·m, {:.2e} of the peak", worst / peak);
     assert!(worst < 2e-3 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
@@ -222,7 +231,7 @@ fn the_pivot_reaction_through_an_impact_keeps_the_momentum_balance() {
     let mut model = load("default.toml");
     model.integrator = IntegratorKind::default();
     let h = model.time.step_s / 3.0;
-    let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 4 }))).unwrap();
+    let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 4 })).unwrap()).unwrap();
     let arm = ArmModel::new(beam, Fidelity::Modal { modes: 3 }, model.arm_options()).unwrap();
     let mut scene = Scene::with_arm(&model, arm.clone()).unwrap();
     while scene.arm.time_s() < 14.9 {

@@ -7,4 +7,5 @@ pub mod measured;
 pub mod overrides;
 pub mod project;
 pub mod seed;
+pub mod sign_off;
 pub mod sweep;
