@@ -560,7 +560,6 @@ fn print_summary(path: &Path, s: &RunSummary) {
         "no decay measured".into()
     };
     println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}", 1e3 * r.amplitude_m);
-    cli::sign_off::print(s);
     if let Some(slip) = &s.string_slip {
         println!(
             "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",
@@ -593,6 +592,7 @@ fn print_summary(path: &Path, s: &RunSummary) {
             );
         }
     }
+    cli::sign_off::print(s);
 }
 
 /// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its

@@ -291,3 +291,69 @@ fn the_pivot_reaction_through_an_impact_keeps_the_momentum_balance() {
 fn scene_angle(times: &[f64], k: usize, model: &Model) -> (f64, f64) {
     model.drive.motion.sample(times[k]).angle_rad.sin_cos()
 }
+
+/// Curvature row over q at the station `x_m`, on the side `inboard` of it: second-order one-sided
+/// differences of the slope rows inside the one element (Hermite slopes are quadratic there).
+fn curvature_row(arm: &ArmModel, x_m: f64, inboard: bool, element_m: f64) -> nalgebra::DVector<f64> {
+    let h = 0.1 * element_m;
+    let sign = if inboard { -1.0 } else { 1.0 };
+    let slope = |x: f64| arm.station_rows(x).0[2].clone();
+    (-3.0 * slope(x_m) + 4.0 * slope(x_m + sign * h) - slope(x_m + 2.0 * sign * h)) * (sign / (2.0 * h))
+}
+
+#[test]
+fn modal_summation_follows_fe_where_loads_concentrate_and_modal_curvature_does_not() {
+    // The default lift with its pad strike, the string lumped at its centre (a 121 kg point load on
+    // the arm besides the hands), under generalized-α (stable for fe at 3 ms): the bending moment at
+    // every section from modal(3) against fe, by force summation and by the modes' curvature
+    // (M = −EI v″, the modal stress shapes).
+    let mut model = load("default.toml");
+    model.integrator = IntegratorKind::default();
+    model.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
+    let (_, fe) = run(&model, Some(Fidelity::Fe)).unwrap();
+    let modal_fidelity = Fidelity::Modal { modes: 3 };
+    let (_, modal) = run(&model, Some(modal_fidelity)).unwrap();
+    let arm = model.arm_model(modal_fidelity).unwrap();
+    let (_, inertia, _) = box_section();
+    let ei = 2.06e11 * inertia;
+    let element_m = model.robot.arm.length_m() / model.robot.arm.elements as f64;
+    let stations = &fe.stress.stations;
+    assert_eq!(stations.len(), modal.stress.stations.len());
+    let steps = fe.t_s.len();
+    let peak = (0..stations.len())
+        .flat_map(|i| (0..steps).map(move |k| (i, k)))
+        .map(|(i, k)| forces(&fe, i, k)[1].abs())
+        .fold(0.0, f64::max);
+    let (mut worst_sum, mut worst_shape) = ((0.0, 0.0), (0.0, 0.0));
+    for (i, station) in stations.iter().enumerate() {
+        // The tip's outboard side carries nothing but its own bodies' inertia: not a section.
+        if i == stations.len() - 1 {
+            continue;
+        }
+        let inboard = i > 0 && (i + 1 == stations.len() || stations[i + 1].station_m != station.station_m);
+        let kappa = curvature_row(&arm, station.station_m, inboard, element_m);
+        let n = modal.modal_dofs;
+        for k in 0..steps {
+            let m_fe = forces(&fe, i, k)[1];
+            let sum = (forces(&modal, i, k)[1] - m_fe).abs();
+            let q = nalgebra::DVector::from_column_slice(&modal.modal_q[k * n..(k + 1) * n]);
+            let shape = (-ei * kappa.dot(&q) - m_fe).abs();
+            if sum > worst_sum.0 {
+                worst_sum = (sum, station.station_m);
+            }
+            if shape > worst_shape.0 {
+                worst_shape = (shape, station.station_m);
+            }
+        }
+    }
+    println!(
+        "modal(3) against fe, worst over the sections and the run, of the peak moment {peak:.0} N·m: \
+         summation {:.2e} at {:.3} m, modal curvature {:.2e} at {:.3} m",
+        worst_sum.0 / peak,
+        worst_sum.1,
+        worst_shape.0 / peak,
+        worst_shape.1
+    );
+    assert!(worst_sum.0 < 5e-3 * peak, "summation {worst_sum:?}");
+    assert!(worst_shape.0 > 4.0 * worst_sum.0, "curvature {worst_shape:?} against summation {worst_sum:?}");
+}
