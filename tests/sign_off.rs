@@ -167,7 +167,7 @@ fn the_root_moment_is_the_drive_torque_less_the_hubs_inertia_at_every_step() {
         worst = worst.max((m - expected).abs());
     }
     println!("root moment against the drive torque: worst {worst:.1} N·m, {:.2e} of the peak", worst / peak);
-    assert!(worst < 2e-3 * peak, "worst {worst} N·m against a peak of {peak}");
+    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
 #[test]
@@ -183,7 +183,7 @@ fn the_summation_is_the_strain_gauges_exact_moment_to_second_order() {
     let peak = readings.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
     let worst = (0..series.t_s.len()).map(|k| (forces(&series, i, k)[1] - readings[k][0]).abs()).fold(0.0, f64::max);
     println!("summation against the gauge: worst {worst:.2} N·m, {:.2e} of the peak", worst / peak);
-    assert!(worst < 2e-3 * peak, "worst {worst} N·m against a peak of {peak}");
+    assert!(worst < 5e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
 /// The machine's linear momentum, world frame, from the state: the arm's Gauss points, its
@@ -227,10 +227,13 @@ fn momentum(scene: &Scene) -> [f64; 2] {
 #[test]
 fn the_pivot_reaction_through_an_impact_keeps_the_momentum_balance() {
     // ∫ (R + F_pad + W) dt = Δp over the first impact: the pivot's reaction from the recovered
-    // accelerations against the change of the momentum of every mass, from the velocities.
+    // accelerations against the change of the momentum of every mass, from the velocities. The
+    // window holds the drive's stop too (its deceleration ends at 15 s); the trapezoidal sum across
+    // that jump and the integrator's own velocity rule leave an error that falls with the step
+    // (0.19 N·s at 1 ms, 0.048 N·s at 0.25 ms).
     let mut model = load("default.toml");
     model.integrator = IntegratorKind::default();
-    let h = model.time.step_s / 3.0;
+    let h = model.time.step_s / 12.0;
     let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 4 })).unwrap()).unwrap();
     let arm = ArmModel::new(beam, Fidelity::Modal { modes: 3 }, model.arm_options()).unwrap();
     let mut scene = Scene::with_arm(&model, arm.clone()).unwrap();
@@ -279,9 +282,10 @@ fn the_pivot_reaction_through_an_impact_keeps_the_momentum_balance() {
     let pad_impulse: f64 = (1..times.len())
         .map(|k| 0.5 * (times[k] - times[k - 1]) * (pad[k][0].hypot(pad[k][1]) + pad[k - 1][0].hypot(pad[k - 1][1])))
         .sum();
+    println!("impulse {impulse:?} N·s against the momentum change {change:?} N·s; pad impulse {pad_impulse:.3} N·s");
     for k in 0..2 {
         assert!(
-            (impulse[k] - change[k]).abs() < 0.02 * pad_impulse,
+            (impulse[k] - change[k]).abs() < 0.005 * pad_impulse,
             "{impulse:?} vs {change:?} (pad impulse {pad_impulse})"
         );
     }
