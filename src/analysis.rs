@@ -19,10 +19,21 @@ pub fn crossing_frequency_hz(series: &[(f64, f64)]) -> f64 {
     }
 }
 
+/// The signal a residual's frequency, decay and settling are read from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ResidualSignal {
+    /// The tip's deflection in the hub frame (an ideal drive: the hub holds still).
+    TipDeflection,
+    /// The hub's rate (under an actuator the hub itself rings on its drive: a rigid arm on its
+    /// cylinder's oil column has no deflection to read).
+    HubRate,
+}
+
 /// Residual vibration of a signal after the drive stopped.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Residual {
-    /// Half the peak-to-peak excursion, m.
+    /// Half the peak-to-peak excursion of the tip deflection, m.
     pub amplitude_m: f64,
     /// Dominant frequency from zero crossings, Hz (NaN if it does not oscillate).
     pub frequency_hz: f64,
@@ -35,9 +46,100 @@ pub struct Residual {
     pub settling_time_s: f64,
     /// Whether it settled before the run's end (else `settling_time_s` is the whole window).
     pub settled: bool,
+    /// The signal the frequency, decrement and settling are read from.
+    pub signal: ResidualSignal,
+    /// Half the peak-to-peak excursion of the hub rate, rad/s, where that is the signal.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub hub_rate_amplitude_rad_s: Option<f64>,
 }
 
-/// Residual vibration of `series` (time, value) from `from_s` on.
+/// The residual vibration of a run after `from_s`: the tip deflection's amplitude (`tip`, m), and
+/// the frequency, decay and settling of the signal that moves — the hub rate (`hub_rate`, rad/s)
+/// where one is given (under an actuator), else the tip deflection.
+pub fn residual_of_run(tip: &[(f64, f64)], hub_rate: Option<&[(f64, f64)]>, from_s: f64) -> Residual {
+    let at_tip = residual(tip, from_s);
+    match hub_rate {
+        None => at_tip,
+        Some(rate) => {
+            let at_hub = residual(rate, from_s);
+            let tail: Vec<(f64, f64)> = rate.iter().copied().filter(|p| p.0 >= from_s).collect();
+            let (frequency_hz, log_decrement) = swings(&tail);
+            Residual {
+                amplitude_m: at_tip.amplitude_m,
+                frequency_hz,
+                log_decrement,
+                damping_ratio: log_decrement / (4.0 * std::f64::consts::PI.powi(2) + log_decrement.powi(2)).sqrt(),
+                signal: ResidualSignal::HubRate,
+                hub_rate_amplitude_rad_s: Some(at_hub.amplitude_m),
+                ..at_hub
+            }
+        }
+    }
+}
+
+/// Frequency (Hz) and logarithmic decrement of a vibration riding on a slow drift (a hub settling
+/// under its controller while it rings), from its swings: the changes between successive
+/// extrema, an extremum taken once the signal has turned back from it by 5 % of its range. From
+/// the largest swing on, its cycles: the sum of a swing and the next (in which a drift's rise and
+/// fall cancel), while they stay above a tenth of the first. A cycle is a period; its sum falls by
+/// e^{−δ} per cycle. NaN where no whole cycle (two for δ) rings.
+fn swings(tail: &[(f64, f64)]) -> (f64, f64) {
+    let (lo, hi) = tail.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
+    let turn = 0.05 * (hi - lo);
+    // Indices of the extrema; `candidate` the one being followed, `rising` the way it goes.
+    let mut at: Vec<usize> = Vec::new();
+    let (mut candidate, mut rising) = (0, None::<bool>);
+    for (i, p) in tail.iter().enumerate().skip(1) {
+        let (value, held) = (p.1, tail[candidate].1);
+        let up = value > held;
+        match rising {
+            None if (value - held).abs() > turn => (rising, candidate) = (Some(up), i),
+            Some(r) if up == r => candidate = i,
+            Some(_) if (value - held).abs() > turn => {
+                at.push(candidate);
+                (rising, candidate) = (Some(up), i);
+            }
+            _ => {}
+        }
+    }
+    let extrema: Vec<(f64, f64)> = at.into_iter().map(|i| vertex(tail, i)).collect();
+    let swing: Vec<(f64, f64)> = extrema.windows(2).map(|w| (w[1].0, (w[1].1 - w[0].1).abs())).collect();
+    let largest = (0..swing.len()).max_by(|&i, &j| swing[i].1.total_cmp(&swing[j].1)).unwrap_or(0);
+    let ringing = swing.get(largest..).unwrap_or_default();
+    let cycles: Vec<f64> = ringing.chunks_exact(2).map(|c| c[0].1 + c[1].1).collect();
+    let first = cycles.first().copied().unwrap_or(0.0);
+    let cycles: Vec<f64> = cycles.into_iter().take_while(|c| *c >= 0.1 * first).collect();
+    // 2n swings from the extremum the largest starts at: n periods.
+    let frequency_hz = match cycles.len() {
+        0 => f64::NAN,
+        n => n as f64 / (ringing[2 * n - 1].0 - extrema[largest].0),
+    };
+    let log_decrement = match cycles.as_slice() {
+        [first, .., last] if *last > 0.0 => (first / last).ln() / (cycles.len() - 1) as f64,
+        _ => f64::NAN,
+    };
+    (frequency_hz, log_decrement)
+}
+
+/// The extremum at sample `i` refined by the parabola through it and its neighbours (time,
+/// value): finer than the sampling, so that a frequency read off a few cycles is not rounded to
+/// whole steps.
+fn vertex(series: &[(f64, f64)], i: usize) -> (f64, f64) {
+    let (Some(before), Some(after)) = (i.checked_sub(1).map(|j| series[j]), series.get(i + 1)) else {
+        return series[i];
+    };
+    let (y0, y1, y2) = (before.1, series[i].1, after.1);
+    let curvature = y0 - 2.0 * y1 + y2;
+    let h = 0.5 * (after.0 - before.0);
+    if curvature == 0.0 {
+        return series[i];
+    }
+    let shift = 0.5 * (y0 - y2) / curvature;
+    (series[i].0 + shift * h, y1 - 0.25 * (y0 - y2) * shift)
+}
+
+/// Residual vibration of `series` (time, value) from `from_s` on, read as a tip deflection (its
+/// `amplitude_m` is in the series' unit).
 pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
     let tail: Vec<(f64, f64)> = series.iter().copied().filter(|p| p.0 >= from_s).collect();
     if tail.len() < 3 {
@@ -48,6 +150,8 @@ pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
             damping_ratio: f64::NAN,
             settling_time_s: 0.0,
             settled: true,
+            signal: ResidualSignal::TipDeflection,
+            hub_rate_amplitude_rad_s: None,
         };
     }
     let (lo, hi) = tail.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| (lo.min(p.1), hi.max(p.1)));
@@ -75,6 +179,8 @@ pub fn residual(series: &[(f64, f64)], from_s: f64) -> Residual {
         damping_ratio,
         settling_time_s: last_out - from_s,
         settled: tail.last().is_some_and(|p| last_out < p.0),
+        signal: ResidualSignal::TipDeflection,
+        hub_rate_amplitude_rad_s: None,
     }
 }
 
@@ -141,6 +247,41 @@ mod tests {
         // e^{-ζωt} = 0.05 at t = ln 20 / ζω.
         let settle = 20f64.ln() / (zeta * w);
         assert!((r.settling_time_s - settle).abs() < 1.0 / f, "{} vs {settle}", r.settling_time_s);
+    }
+
+    /// Under an actuator the frequency and decay are the hub rate's, the amplitude the tip's.
+    #[test]
+    fn a_run_under_an_actuator_reads_the_hub_rate() {
+        let (tip_hz, hub_hz) = (9.0, 3.8);
+        let wave = |f: f64, a: f64| -> Vec<(f64, f64)> {
+            (0..100_000).map(|i| i as f64 * 1e-4).map(|t| (t, a * (std::f64::consts::TAU * f * t).sin())).collect()
+        };
+        let (tip, hub) = (wave(tip_hz, 1e-4), wave(hub_hz, 0.02));
+        let ideal = residual_of_run(&tip, None, 0.0);
+        assert_eq!(ideal.signal, ResidualSignal::TipDeflection);
+        assert!((ideal.frequency_hz - tip_hz).abs() < 1e-2 && ideal.hub_rate_amplitude_rad_s.is_none());
+        let actuated = residual_of_run(&tip, Some(&hub), 0.0);
+        assert_eq!(actuated.signal, ResidualSignal::HubRate);
+        assert!((actuated.frequency_hz - hub_hz).abs() < 1e-2, "{}", actuated.frequency_hz);
+        assert!((actuated.amplitude_m - 1e-4).abs() < 1e-7);
+        assert!((actuated.hub_rate_amplitude_rad_s.unwrap() - 0.02).abs() < 1e-5);
+    }
+
+    /// A well damped ring on a slow drift (a hub settling under its controller): the swings give
+    /// its damped frequency and decrement where the mean's crossings cannot.
+    #[test]
+    fn a_damped_ring_on_a_drift_is_read_from_its_swings() {
+        let (zeta, f) = (0.17_f64, 3.9);
+        let w = std::f64::consts::TAU * f;
+        let wd = w * (1.0 - zeta * zeta).sqrt();
+        let s: Vec<(f64, f64)> = (0..50_000)
+            .map(|i| i as f64 * 1e-4)
+            .map(|t| (t, (-zeta * w * t).exp() * (wd * t).sin() + 0.15 * (-1.5 * t).exp()))
+            .collect();
+        let (frequency_hz, log_decrement) = swings(&s);
+        let exact = std::f64::consts::TAU * zeta / (1.0 - zeta * zeta).sqrt();
+        assert!((frequency_hz / (wd / std::f64::consts::TAU) - 1.0).abs() < 0.03, "{frequency_hz}");
+        assert!((log_decrement / exact - 1.0).abs() < 0.1, "{log_decrement} vs {exact}");
     }
 
     #[test]

@@ -10,9 +10,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 
-use pipearm::analysis::StiffnessClass;
-use pipearm::arm::{Fidelity, STANDARD_GRAVITY_M_S2};
-use pipearm::beam::BeamModel;
+use pipearm::arm::Fidelity;
 use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
 use pipearm::run::{RunOptions, RunSummary, run, run_partial};
@@ -141,6 +139,7 @@ enum Command {
     Design(cli::design::DesignArgs),
     /// Run a scenario and set it against measured signals (docs/measurements.md): print a table
     /// per signal and write <out>/<name>.compare.json.
+    #[command(after_help = cli::help::COMPARE)]
     Compare {
         /// Scenario file.
         scenario: PathBuf,
@@ -159,9 +158,7 @@ enum Command {
     },
     /// Fit scenario parameters to measured signals (least squares); print them with 95 %
     /// intervals; write <out>/<name>.fit.json and <out>/<name>.fitted.toml.
-    ///
-    /// Example: pipearm fit scenarios/default.toml --measured rig.csv
-    ///   --params arm.damping_ratios.0,dampeners.0.law.stiffness --step 0.001
+    #[command(after_help = cli::help::FIT)]
     Fit {
         /// Scenario file.
         scenario: PathBuf,
@@ -191,6 +188,29 @@ enum Command {
         /// The folder (created if need be; refused if it already holds scenarios/ or robots/).
         dir: PathBuf,
     },
+    /// List the pipe catalogue: size, weight, outer diameter, wall, kg/m, connection and the mass
+    /// of one joint per range (docs/pipes.md).
+    #[command(after_help = cli::help::PIPES)]
+    Pipes {
+        /// Sizes (9-5/8) or products (casing, tubing, drill-pipe, heavy-weight-drill-pipe,
+        /// drill-collar) a row must match, all of them.
+        filters: Vec<String>,
+    },
+    /// Print what the scenario's machine holds and lifts: the pipe diameters its jaws close on
+    /// and, per lift angle, the heaviest payload each drive holds against gravity.
+    #[command(after_help = cli::help::CAPACITY)]
+    Capacity {
+        /// Scenario file (its robot, actuator and payload placement).
+        #[arg(default_value = "scenarios/default.toml")]
+        scenario: PathBuf,
+        /// Lift angle step of the table, degrees.
+        #[arg(long, default_value_t = 10.0)]
+        step_deg: f64,
+    },
+    /// Draw the machine as pipearm reads it, dimensioned: the arm and its sections, the hands,
+    /// the string, the pads, structures and cylinder pins, the lift angle; write
+    /// recordings/<name>.machine.svg and .png.
+    Draw(cli::draw::DrawArgs),
     /// Print the arm's clamped natural frequencies, λL, modal masses and static w/l.
     #[command(after_help = cli::help::MODES)]
     Modes {
@@ -252,7 +272,11 @@ fn main() -> Result<()> {
                 Outputs { files: (!no_record).then_some(out.as_path()), tables: csv.then_some(out.as_path()), viewer };
             run_command(&scenario, &overrides, options, outputs)
         }
-        Command::Modes { scenario, count, spin, no_stiffening } => modes(&scenario, count, spin, !no_stiffening),
+        Command::Modes { scenario, count, spin, no_stiffening } => {
+            cli::modes::modes(&scenario, count, spin, !no_stiffening)
+        }
+        Command::Pipes { filters } => cli::pipes::pipes(&filters),
+        Command::Capacity { scenario, step_deg } => cli::capacity::capacity(&scenario, step_deg),
         Command::Check { scenarios, baselines, project, bless, json, model } => {
             check(scenarios, baselines, &Project::at(&project), (bless, json), model)
         }
@@ -267,6 +291,7 @@ fn main() -> Result<()> {
         Command::Sweep(args) => cli::sweep::sweep(args),
         Command::Envelope(args) => cli::envelope::envelope(args),
         Command::Design(args) => cli::design::design_command(args),
+        Command::Draw(args) => cli::draw::draw(args),
         Command::Fit { scenario, measured, params, model, step, shift, out } => {
             let settings = pipearm::fit::RunSettings { fidelity: model, step_s: step };
             cli::measured::fit_command(&scenario, &measured, &params, (settings, shift), &out)
@@ -559,7 +584,11 @@ fn print_summary(path: &Path, s: &RunSummary) {
     } else {
         "no decay measured".into()
     };
-    println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}", 1e3 * r.amplitude_m);
+    let read = match r.hub_rate_amplitude_rad_s {
+        Some(rate) => format!(" (frequency and decay of the hub rate, ±{:.4} °/s)", rate.to_degrees()),
+        None => String::new(),
+    };
+    println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}{read}", 1e3 * r.amplitude_m);
     if let Some(slip) = &s.string_slip {
         println!(
             "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",
@@ -598,8 +627,19 @@ fn print_summary(path: &Path, s: &RunSummary) {
 /// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its
 /// effort (the run is not stopped: the drive is ideal, the URDF's effort is the real one's).
 fn print_drive_limits(d: &pipearm::run::DriveLimits, peak_torque_n_m: f64) {
-    let shaped = match (&d.shaper, d.shaper_hz) {
-        (Some(shaper), Some(hz)) => format!(" with a {shaper} shaper at {hz:.3} Hz"),
+    let shaped = match (&d.shaper, &d.shaper_hz) {
+        (Some(shaper), Some(hz)) => {
+            let shares = d.shaper_residual_share.as_deref();
+            let modes: Vec<String> = hz
+                .iter()
+                .enumerate()
+                .map(|(i, f)| match shares.and_then(|s| s.get(i)) {
+                    Some(share) => format!("{f:.3} Hz ({:.0} % of the residual)", 100.0 * share),
+                    None => format!("{f:.3} Hz"),
+                })
+                .collect();
+            format!(" with a {shaper} shaper at {}", modes.join(", "))
+        }
         _ => String::new(),
     };
     println!(
@@ -633,58 +673,4 @@ fn print_actuator(a: &pipearm::actuator::ActuatorSummary) {
         a.max_tracking_error_deg,
         a.overtravel_deg
     );
-}
-
-fn modes(path: &Path, count: usize, spin_rad_s: f64, stiffening: bool) -> Result<()> {
-    let scenario = Scenario::load(path)?;
-    if !(spin_rad_s.is_finite() && spin_rad_s >= 0.0) {
-        bail!("--spin = {spin_rad_s}: allowed a finite rate >= 0 rad/s");
-    }
-    let beam = BeamModel::new(scenario.model.beam_spec()?)?;
-    let basis = if spin_rad_s > 0.0 {
-        beam.modes_spinning(spin_rad_s, stiffening).with_context(|| format!("at {spin_rad_s} rad/s"))?
-    } else {
-        beam.modes()?
-    };
-    let l = beam.length_m();
-    // λL from the length-averaged EI and ρA (exact for a uniform arm).
-    let (ei, mu) = beam.elements.iter().fold((0.0, 0.0), |(ei, mu), e| {
-        (ei + e.bending_rigidity_n_m2 * e.length_m / l, mu + e.mass_per_length_kg_m * e.length_m / l)
-    });
-    let [_, tip_v, _] = beam.point_rows(l);
-    let stiffening_note = if stiffening { "" } else { " without stiffening" };
-    let string_dofs =
-        beam.member.as_ref().map_or(String::new(), |m| format!(", {} of them the string's", m.own_dofs.len()));
-    println!(
-        "arm of {} ({} elements, L = {l} m, {} DOFs{string_dofs}), spin {spin_rad_s} rad/s{stiffening_note}",
-        scenario.model.robot.name,
-        beam.elements.len(),
-        beam.dofs()
-    );
-    println!("{:>4} {:>12} {:>12} {:>10} {:>20}", "mode", "f (Hz)", "ω (rad/s)", "λL", "tip modal mass (kg)");
-    for i in 0..count.min(basis.len()) {
-        let w = basis.omegas_rad_s[i];
-        let tip = tip_v.dot(&basis.shapes.column(i));
-        let lambda_l = (w * w * mu / ei).powf(0.25) * l;
-        let tip_mass = if tip.abs() > 1e-12 { format!("{:.4e}", 1.0 / (tip * tip)) } else { "axial/no tip".into() };
-        println!("{:>4} {:>12.5} {:>12.5} {:>10.5} {:>20}", i + 1, w / std::f64::consts::TAU, w, lambda_l, tip_mass);
-    }
-    if let (Some(member), Some(string)) = (&beam.member, beam.member_modes()) {
-        // The modes above are the arm's with the string riding on its hands; the string's own:
-        let listed: Vec<String> = string.frequencies_hz().iter().take(count).map(|f| format!("{f:.3}")).collect();
-        println!(
-            "{} held in its hands (at {:?} m): [{}] Hz",
-            member.spec.name,
-            member.spec.clamps_m,
-            listed.join(", ")
-        );
-    }
-    let w = beam.gravity_tip_deflection_m(STANDARD_GRAVITY_M_S2)?;
-    println!(
-        "static tip deflection, horizontal under gravity: {:.3} mm, w/l = 1/{:.0}: {}",
-        w * 1e3,
-        l / w,
-        StiffnessClass::of_ratio(w / l).describe()
-    );
-    Ok(())
 }

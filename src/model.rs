@@ -15,7 +15,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::actuator::{Actuator, ActuatorPlant};
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
-use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, MemberSpec, Segment};
+use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, MemberPiece, MemberSpec, SectionShape, Segment};
 use crate::contact::ForceLaw;
 use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
@@ -149,6 +149,20 @@ pub struct Drive {
     pub motion: MotionProfile,
     /// What tracks it ([`Actuator::Ideal`]: the hub follows it exactly).
     pub actuator: Actuator,
+    /// The modes an input shaper on the motion was tuned to when they were found rather than
+    /// given, with their shares of the residual ([`crate::tuning`]); empty otherwise.
+    pub shaper_tuning: Vec<TunedMode>,
+}
+
+/// A mode a drive's input shaper was tuned to, found by [`crate::tuning`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct TunedMode {
+    /// Natural frequency |λ|/2π of the linearised arm's pole, Hz.
+    pub frequency_hz: f64,
+    /// Its damping ratio −Re λ/|λ|.
+    pub damping_ratio: f64,
+    /// Its largest share of an output's residual vibration after the unshaped move (0..1).
+    pub residual_share: f64,
 }
 
 /// What the gripper holds.
@@ -246,16 +260,21 @@ impl HeldString {
         self.start_m() + 0.5 * self.pipe.length_m
     }
 
+    /// Arm station of the string's centre of mass, m (its centre but for its connections).
+    pub fn mass_centre_m(&self) -> f64 {
+        self.start_m() + self.pipe.mass_centre_m()
+    }
+
     /// The hand that carries the jaws and draws the string: the outermost grip's.
     pub fn palm(&self) -> &Grip {
         self.grips.last().expect("a held string has a grip")
     }
 
-    /// The string as one rigid mass at its centre (the `rigid` fidelity).
+    /// The string as one rigid mass at its centre of mass (the `rigid` fidelity).
     pub fn lumped_mass(&self) -> ConcentratedMass {
         ConcentratedMass {
             name: format!("string {}", self.pipe.pipe.size),
-            position_m: self.centre_m(),
+            position_m: self.mass_centre_m(),
             mass_kg: self.pipe.mass_kg(),
             rotary_inertia_kg_m2: self.pipe.transverse_inertia_kg_m2(),
         }
@@ -264,12 +283,25 @@ impl HeldString {
     /// The string as a beam clamped at its hands, at `fidelity` (`modal` keeps that many
     /// fixed-interface modes, `fe` every DOF).
     pub fn member_spec(&self, fidelity: Fidelity) -> Result<MemberSpec, BeamError> {
-        let p = self.pipe.pipe;
-        let section = crate::beam::SectionShape::Tube { outer_diameter_m: p.outer_diameter_m, wall_m: p.wall_m };
-        let steel = crate::beam::Material::STEEL;
+        let p = &self.pipe.pipe;
+        let section = SectionShape::Tube { outer_diameter_m: p.outer_diameter_m, wall_m: p.wall_m };
+        let steel = p.material();
         let mut segment = Segment::from_shape(self.pipe.length_m, &section, &steel)?;
-        // The catalogue's nominal weight (upsets and couplings included), not the plain tube's.
+        // The pipe's weight (a uniform string's nominal weight spreads its couplings over it),
+        // not the plain tube's of its section.
         segment.mass_per_length_kg_m = p.mass_per_length_kg_m;
+        let pieces = self
+            .pipe
+            .connections
+            .iter()
+            .map(|c| {
+                let wall_m = 0.5 * (c.outer_diameter_m - c.bore_m);
+                let shape = SectionShape::Tube { outer_diameter_m: c.outer_diameter_m, wall_m };
+                let mut piece = Segment::from_shape(c.length_m(), &shape, &steel)?;
+                piece.mass_per_length_kg_m = p.mass_per_length_kg_m + c.added_mass_kg / c.length_m();
+                Ok(MemberPiece { from_m: c.from_m, segment: piece })
+            })
+            .collect::<Result<Vec<_>, BeamError>>()?;
         let elements = ((STRING_ELEMENTS as f64 * self.pipe.length_m / 12.5).round() as usize).max(4);
         Ok(MemberSpec {
             name: format!("string {}", p.size),
@@ -282,6 +314,7 @@ impl HeldString {
                 _ => None,
             },
             damping_ratio: self.damping_ratio,
+            pieces,
         })
     }
 

@@ -5,7 +5,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::actuator::{ActuatorOutputs, ActuatorSummary};
-use crate::analysis::{Residual, StiffnessClass, residual};
+use crate::analysis::{Residual, StiffnessClass, residual_of_run};
 use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
@@ -207,7 +207,8 @@ pub struct RunSummary {
     pub drive: DriveLimits,
     /// The actuator's peaks and how well it tracked.
     pub actuator: ActuatorSummary,
-    /// Residual tip vibration after the drive stops.
+    /// Residual vibration after the drive stops: the tip deflection's amplitude, and the frequency
+    /// and decay of the signal that moves (the hub rate under an actuator).
     pub residual: Residual,
     /// Contact pairs.
     pub pairs: Vec<PairSummary>,
@@ -303,15 +304,24 @@ pub struct DriveLimits {
     /// The input shaper convolved with the profile (`zv`, `zvd`, `ei`); absent when unshaped.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shaper: Option<String>,
-    /// The natural frequency the shaper is tuned to, Hz; absent when unshaped.
+    /// The natural frequencies the shaper is tuned to, Hz, lowest first; absent when unshaped.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub shaper_hz: Option<f64>,
+    pub shaper_hz: Option<Vec<f64>>,
+    /// The damping ratio of each, as tuned; absent when unshaped.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper_damping_ratio: Option<Vec<f64>>,
+    /// Each mode's largest share of an output's residual vibration after the unshaped move
+    /// (0..1), where the tuning found the modes (no `shaper_hz` given); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shaper_residual_share: Option<Vec<f64>>,
 }
 
 impl DriveLimits {
     /// `model`'s drive against its lift joint, with the run's peak drive torque (N·m).
     pub fn of(model: &Model, peak_drive_torque_n_m: f64) -> Self {
         let (motion, lift) = (&model.drive.motion, &model.robot.lift);
+        let (modes, tuning) = (motion.shaper_modes(), &model.drive.shaper_tuning);
+        let shaped = !modes.is_empty();
         DriveLimits {
             kind: motion.name().into(),
             peak_rate_deg_s: motion.peak_rate_rad_s().to_degrees(),
@@ -320,7 +330,9 @@ impl DriveLimits {
             effort_n_m: lift.effort_n_m,
             torque_within_effort: peak_drive_torque_n_m <= lift.effort_n_m,
             shaper: motion.shaper().map(|s| s.name().into()),
-            shaper_hz: motion.shaper_hz(),
+            shaper_hz: shaped.then(|| modes.iter().map(|m| m.frequency_hz).collect()),
+            shaper_damping_ratio: shaped.then(|| modes.iter().map(|m| m.damping_ratio).collect()),
+            shaper_residual_share: (!tuning.is_empty()).then(|| tuning.iter().map(|m| m.residual_share).collect()),
         }
     }
 }
@@ -670,6 +682,9 @@ fn summarize(
     let deflection: Vec<(f64, f64)> =
         series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect();
     let max_tip_deflection_m = deflection.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    // Under an actuator the hub rings on its drive: the residual's frequency and decay are its.
+    let hub_rate: Option<Vec<(f64, f64)>> = (model.drive.actuator != crate::actuator::Actuator::Ideal)
+        .then(|| series.t_s.iter().copied().zip(series.hub_rate_rad_s.iter().copied()).collect());
     let (torque_i, peak_torque) = series
         .drive_torque_n_m
         .iter()
@@ -728,7 +743,7 @@ fn summarize(
             &series.drive_torque_n_m,
             &series.actuator,
         ),
-        residual: residual(&deflection, model.drive_end_s()),
+        residual: residual_of_run(&deflection, hub_rate.as_deref(), model.drive_end_s()),
         pairs,
         highest_omega_dt: fastest_rad_s(scene) * model.time.step_s,
         stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),

@@ -7,7 +7,9 @@
 //! (`robot`, a table drive's `file`) are relative to the scenario file.
 
 mod actuator;
+mod clamp;
 mod drive;
+mod loop_advice;
 pub mod spelling;
 mod strikes;
 
@@ -27,7 +29,7 @@ use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
-pub use drive::DriveSpec;
+pub use drive::{DriveSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
 /// A scenario file as written, and as a TOML document with its old spellings rewritten to the
@@ -311,8 +313,20 @@ impl Scenario {
 
     /// Checks and resolves a spec as if read from `path`, with its robot already read by
     /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
-    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
-        let check = Check { path };
+    pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
+        Self::resolve(Check { path, capacity: true }, spec, robot)
+    }
+
+    /// Reads, checks and resolves a scenario file as [`Scenario::load`] does, but for its payload
+    /// against the machine's capacity ([`crate::capacity`]): to show what the machine lifts.
+    pub fn load_beyond_capacity(path: &Path) -> Result<Self, ScenarioError> {
+        let spec = Self::read_spec(path)?;
+        let robot = Self::load_robot(path, &spec)?;
+        Self::resolve(Check { path, capacity: false }, spec, robot)
+    }
+
+    fn resolve(check: Check, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
+        let path = check.path;
         if let Some(ratios) = &spec.arm.damping_ratios {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
         }
@@ -329,7 +343,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator },
+            drive: Drive { motion, actuator, shaper_tuning: Vec::new() },
             dampeners: dampeners?,
             structures,
             contact: spec.contact,
@@ -340,8 +354,8 @@ impl Scenario {
             sensors,
             checks,
         };
-        if let Some((_, shaper_hz)) = spec.drive.shaping() {
-            model.drive.motion = check.shaped(&spec.drive, shaper_hz, &model)?;
+        if let Some(request) = spec.drive.shaping() {
+            (model.drive.motion, model.drive.shaper_tuning) = check.shaped(&spec.drive, request, &model)?;
         }
         check.model(&model)?;
         check.structures_clear(&model)?;
@@ -352,6 +366,8 @@ impl Scenario {
 /// The checks of one scenario file: each error names the file, the key and what is allowed.
 struct Check<'a> {
     path: &'a Path,
+    /// Whether the payload is checked against the machine's capacity.
+    capacity: bool,
 }
 
 impl Check<'_> {
@@ -461,6 +477,7 @@ impl Check<'_> {
             ));
         }
         self.drive_limits(model)?;
+        self.capacity(model)?;
         model.integrator.build().map_err(|e| self.invalid("integrator", e.to_string()))?;
         self.time(model)?;
         let g = model.physics.gravity_m_s2;
@@ -471,6 +488,31 @@ impl Check<'_> {
             return Err(self.invalid("contact.pad_mass_kg", format!("{} is outside > 0", model.contact.pad_mass_kg)));
         }
         self.actuator_in_scene(model)
+    }
+
+    /// The payload within what the machine holds and lifts ([`crate::capacity`]): a pipe its
+    /// jaws close on, a weight its drive holds at every angle of the drive's path.
+    fn capacity(&self, model: &Model) -> Result<(), ScenarioError> {
+        use crate::capacity::CapacityError;
+        if !self.capacity {
+            return Ok(());
+        }
+        match crate::capacity::check(model) {
+            Ok(()) => Ok(()),
+            Err(e @ CapacityError::Jaws { .. }) => {
+                let own = model.payload.string().is_some_and(|h| h.pipe.pipe.row.is_none());
+                let key = if own { "payload.pipe.outer_diameter_m" } else { "payload.size" };
+                Err(self.invalid(key, e.to_string()))
+            }
+            // A servo or cylinder too weak for the arm itself: its holding checks name the setting.
+            Err(CapacityError::ArmAlone { .. })
+                if !matches!(model.drive.actuator, crate::actuator::Actuator::Ideal) =>
+            {
+                Ok(())
+            }
+            Err(e @ CapacityError::ArmAlone { .. }) => Err(self.invalid("robot", e.to_string())),
+            Err(e) => Err(self.invalid("payload", e.to_string())),
+        }
     }
 
     fn damping_ratios(&self, ratios: &[f64]) -> Result<Vec<f64>, ScenarioError> {
@@ -670,40 +712,5 @@ impl Check<'_> {
             }
         }
         Ok(resolved.into_iter().map(|(_, g)| g).collect())
-    }
-
-    fn clamp(&self, held: &HeldString, robot: &Robot) -> Result<(), ScenarioError> {
-        let Some(clamp) = held.friction_clamp() else { return Ok(()) };
-        if held.grips.len() > 1 {
-            return Err(self.invalid(
-                "payload.grips",
-                "a friction clamp holds the string in one hand's jaws: give one grip (`at`)",
-            ));
-        }
-        let mu = clamp.friction_coefficient;
-        if !(mu.is_finite() && mu > 0.0 && mu <= 2.0) {
-            return Err(self.invalid("payload.friction_coefficient", format!("{mu} is outside 0 < μ <= 2")));
-        }
-        if let Some(n) = clamp.squeeze_n
-            && !(n.is_finite() && n > 0.0)
-        {
-            return Err(self.invalid("payload.squeeze_n", format!("{n} is outside > 0 N")));
-        }
-        let jaws = robot.carried.iter().filter(|b| b.mount.is_prismatic()).count();
-        if jaws != 2 {
-            return Err(self.invalid(
-                "payload.clamp",
-                format!(
-                    "a friction clamp needs a gripper with two jaws on prismatic joints; {} has {jaws}",
-                    robot.name
-                ),
-            ));
-        }
-        if robot.body(&held.palm().hand).is_some_and(|b| b.shapes.is_empty()) {
-            return Err(
-                self.invalid("payload.at", format!("`{}` has no collision shape to carry the jaws", held.palm().hand))
-            );
-        }
-        Ok(())
     }
 }

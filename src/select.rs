@@ -1,6 +1,5 @@
-//! The model a scene needs (`model = { kind = "auto" }`, the default), the seed's motion advice
-//! (§4) for the arm's class, and the frequency a shaped drive is tuned to by default
-//! ([`shaper_tuning_hz`]).
+//! The model a scene needs (`model = { kind = "auto" }`, the default) and the seed's motion advice
+//! (§4) for the arm's class. (A shaped drive's modes: [`crate::tuning`].)
 //!
 //! The cheapest fidelity that resolves what the scene excites:
 //! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
@@ -30,6 +29,7 @@ use serde::Serialize;
 use crate::analysis::StiffnessClass;
 use crate::arm::{ArmModel, ArmSimulation, Fidelity};
 use crate::beam::{BeamError, BeamModel, ModalBasis};
+use crate::drive::MotionLaw;
 use crate::model::{Dampener, Model};
 
 /// The fidelity chosen and why.
@@ -143,7 +143,7 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
         n = n.max(k);
     }
     let motion = &model.drive.motion;
-    if motion.name() == "s-curve" {
+    if motion.law() == MotionLaw::SCurve {
         let t_j = motion.peak_accel_rad_s2() / motion.peak_jerk_rad_s3();
         let k = below(1.0 / t_j);
         band_hz = band_hz.max(1.0 / t_j);
@@ -157,7 +157,7 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
 /// frequency, whatever the scene's band: a string mode that close to the arm's takes part in its
 /// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it
 /// (`pipearm bench`'s `string` axis shows where a rigid string stays within 1 % of the converged
-/// peak force; docs/scene.md).
+/// peak force; docs/fidelity.md).
 pub const STRING_MODE_MARGIN: f64 = 5.0;
 
 /// The held string's fidelity: the scenario's, or the cheapest the scene needs — `rigid` (lumped
@@ -248,20 +248,6 @@ fn oscillating_poles_at_end(
     Some(oscillating)
 }
 
-/// The natural frequency (Hz) an input shaper on the model's drive is tuned to by default: the
-/// first mode of the arm with its payload, linearised at rest at the end of the drive's path
-/// (gravity and stiffening there included) — with a servo or hydraulic actuator the first
-/// coupled arm+drive mode. `|λ| / 2π` of its pole, from a model of the clamped modes up to
-/// [`COUPLED_REFERENCE_MODES`] (the first frequency converges long before). `None` if the arm
-/// cannot be built or linearised, or has no oscillating mode.
-pub fn shaper_tuning_hz(model: &Model) -> Option<f64> {
-    let beam = BeamModel::new(model.beam_spec().ok()?).ok()?;
-    let modes = beam.modes().ok()?;
-    let k = modes.len().min(COUPLED_REFERENCE_MODES);
-    let first = *oscillating_poles_at_end(model, &beam, &modes, k)?.first()?;
-    Some(first.norm() / std::f64::consts::TAU)
-}
-
 /// Whether the arm rests on a pad under gravity at the stop (its static deflection there closes
 /// the gap), and the pad's stiffness for an impact estimate, N/m (a nonlinear law's secant at
 /// 1 mm).
@@ -291,7 +277,7 @@ pub struct MotionAdvice {
 /// The seed's recommended acceleration limits (§4) for `class`, against the model's drive.
 pub fn motion_advice(model: &Model, class: StiffnessClass) -> MotionAdvice {
     let motion = &model.drive.motion;
-    let s_curve = motion.name() == "s-curve";
+    let s_curve = motion.law() == MotionLaw::SCurve;
     let peak = motion.peak_accel_rad_s2().to_degrees();
     let (advice, limit, profile_ok) = match class {
         StiffnessClass::Rigid => ("trapezoidal drive, acceleration at start and stop ≤ 7–8 °/s²", 7.0, true),
@@ -300,7 +286,7 @@ pub fn motion_advice(model: &Model, class: StiffnessClass) -> MotionAdvice {
         StiffnessClass::Flexible => ("S-curve, acceleration ≤ 7–8 °/s²", 7.0, s_curve),
         StiffnessClass::BeyondYield => ("beyond the seed's bands: stiffen the arm", 0.0, false),
     };
-    let uniform = motion.name() == "uniform";
+    let uniform = motion.law() == MotionLaw::Uniform;
     MotionAdvice {
         advice: advice.into(),
         peak_accel_deg_s2: peak,

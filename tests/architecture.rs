@@ -179,3 +179,23 @@ fn no_source_file_is_over_700_lines() {
         assert!(lines <= 700, "{}: {lines} lines", file.display());
     }
 }
+
+/// Identity is typed: no source picks what to do by comparing a thing's name to a string (a
+/// piece named "string", a profile named "s-curve") or by downcasting through `Any`: an enum or
+/// a hook trait, which the compiler checks when a kind is added, says it instead.
+#[test]
+fn nothing_dispatches_on_a_name_string_or_downcasts() {
+    let forbidden = [".name() == \"\"", ".name == \"\"", "as_any", "downcast", "dyn Any"];
+    for file in rust_files(&src()) {
+        let code = code_of(&std::fs::read_to_string(&file).unwrap());
+        for pattern in forbidden {
+            assert!(!code.contains(pattern), "{}: `{pattern}`", file.display());
+        }
+    }
+}
+
+#[test]
+fn the_dispatch_check_sees_through_formatting_but_not_into_comments() {
+    let code = code_of("if piece.name == \"string\" { } // x.as_any()\n");
+    assert!(code.contains(".name == \"\"") && !code.contains("as_any"));
+}

@@ -311,6 +311,25 @@ fn shaper_keys_are_checked_naming_the_key() {
     // ZVD at 0.05 Hz lasts 20 s, longer than the 15 s lift.
     let m = load_error("shaper-long", shaped("shaper = \"zvd\"\nshaper_hz = 0.05"));
     assert!(m.contains("drive.duration_s") && m.contains("shaper's length"), "{m}");
+    // A list: each frequency checked, the damping ratios one for all or one each.
+    let m = load_error("shaper-hz-list", shaped("shaper = \"zvd\"\nshaper_hz = [2.85, 0.0]"));
+    assert!(m.contains("drive.shaper_hz") && m.contains("> 0"), "{m}");
+    let m = load_error("shaper-hz-empty", shaped("shaper = \"zvd\"\nshaper_hz = []"));
+    assert!(m.contains("drive.shaper_hz") && m.contains("empty"), "{m}");
+    let m = load_error("shaper-hz-text", shaped("shaper = \"zvd\"\nshaper_hz = \"fast\""));
+    assert!(m.contains("drive.shaper_hz") && m.contains("a number or a list of numbers"), "{m}");
+    let m = load_error(
+        "shaper-damping-count",
+        shaped("shaper = \"zvd\"\nshaper_hz = [2.85, 5.1]\nshaper_damping_ratio = [0.01, 0.02, 0.03]"),
+    );
+    assert!(m.contains("drive.shaper_damping_ratio") && m.contains("one per frequency"), "{m}");
+    let m = load_error(
+        "shaper-damping-range",
+        shaped("shaper = \"zvd\"\nshaper_hz = [2.85, 5.1]\nshaper_damping_ratio = 1.0"),
+    );
+    assert!(m.contains("drive.shaper_damping_ratio") && m.contains("0 <= ratio < 1"), "{m}");
+    let m = load_error("shaper-damping-alone", shaped("shaper = \"zvd\"\nshaper_damping_ratio = 0.02"));
+    assert!(m.contains("drive.shaper_damping_ratio") && m.contains("drive.shaper_hz"), "{m}");
 }
 
 #[test]

@@ -60,6 +60,15 @@ fn a_quick_bench_of_the_lab_scene_agrees_with_its_reference_and_the_theory() {
     assert!(ga.len() == 3 && ga.iter().all(|&e| e < 0.01), "errors at h/2, h, 2h: {ga:?}");
     let row = result.stability.arm.iter().find(|r| r.integrator == IntegratorKind::SymplecticEuler).unwrap();
     let Limit::Step(h) = row.measured else { panic!("symplectic Euler must have a finite limit") };
+    common::validated_rel(
+        &common::INTEGRATORS,
+        "`pipearm bench` stability map, lab scene: symplectic Euler's largest stable step as ω_max·dt",
+        2.0,
+        "the single-mode limit on the arm's highest mode",
+        h * row.omega_max_rad_s,
+        "",
+        0.01,
+    );
     assert!(rel(h * row.omega_max_rad_s, 2.0) < 0.01);
     let csv = points_csv(&result);
     assert_eq!(csv.lines().count(), result.points.len() + 1);

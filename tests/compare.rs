@@ -2,6 +2,8 @@
 //! recovered and the errors vanish), the overlay's entities, and bad measured files (an error
 //! naming the column and line, nothing written).
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -81,6 +83,24 @@ fn a_run_against_its_own_shifted_channels() {
     let aligned = compare(&model, &measured, &CompareOptions { shift: true, ..CompareOptions::default() }).unwrap();
     let c = &aligned.comparison;
     let found = c.shift_s.unwrap();
+    common::validated_abs(
+        &common::FIT,
+        "`pipearm compare --shift` on a run's own channels logged every 5 ms on a clock 0.1234 s late: shift found",
+        shift_s,
+        "the known lag",
+        found,
+        "s",
+        0.2e-3,
+    );
+    let worst = c.signals.iter().map(|s| s.rms_error_over_peak.max(s.peak_error_relative.abs())).fold(0.0, f64::max);
+    common::validated_row(
+        &common::FIT,
+        "the same, aligned: RMS error over peak and peak error of each of the 3 channels",
+        "0 (the run's own channels)",
+        &format!("largest {}", common::relative(worst)),
+        &common::relative(worst),
+        "< 0.2 %",
+    );
     assert!((found - shift_s).abs() < 0.2e-3, "shift {found} s, expected {shift_s} s");
     for s in &c.signals {
         assert!(s.rms_error_over_peak < 2e-3, "{}: rms/peak {}", s.signal, s.rms_error_over_peak);

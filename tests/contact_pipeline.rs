@@ -5,7 +5,7 @@ mod common;
 
 use std::path::Path;
 
-use common::rel;
+use common::{CONTACT_SCENE, MODEL_CHOICE, rel, validated_rel};
 use pipearm::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
 use pipearm::beam::BeamModel;
 use pipearm::contact::ForceLaw;
@@ -53,6 +53,13 @@ fn a_bar_lying_on_a_pad_is_held_by_the_manifold_points() {
         points.len(),
         weight_n * e
     );
+    let case = format!(
+        "a bar lying on a linear pad (1e7 N/m), its 500 N weight 0.05 m off centre, the law spread over rapier's {} manifold points",
+        points.len()
+    );
+    let source = "statics of a bar on two springs of k/2";
+    validated_rel(&CONTACT_SCENE, &format!("{case}: lift"), weight_n, source, lift, "N", 0.01);
+    validated_rel(&CONTACT_SCENE, &format!("{case}: moment"), weight_n * e, source, moment, "N·m", 0.01);
     assert_eq!(points.len(), 4, "a box on a box face: the four corners of the pad's face");
     assert!(rel(lift, weight_n) < 0.01, "lift {lift} vs weight {weight_n}");
     assert!(rel(moment, weight_n * e) < 0.01, "moment {moment} vs {}", weight_n * e);
@@ -88,6 +95,20 @@ fn a_flat_press_gives_the_law_whatever_the_number_of_points() {
             "{detection:?} at {station:.3} m, {length} m long: {:.2} N from {} points",
             pair.force_n,
             pair.points.len()
+        );
+        validated_rel(
+            &CONTACT_SCENE,
+            &format!(
+                "default arm, rigid, pressed 0.2 mm into a linear pad (7.5e6 N/m) {} m long at {station:.3} m, {}: {} points",
+                length,
+                if detection == Detection::Pipeline { "pipeline" } else { "pad-face" },
+                pair.points.len()
+            ),
+            k * depth,
+            "k δ, whatever the number of points",
+            pair.force_n,
+            "N",
+            0.01,
         );
         assert!(rel(pair.force_n, k * depth) < 0.01, "{detection:?}: {} N vs {} N", pair.force_n, k * depth);
         totals.push((pair.points.len(), pair.force_n));
@@ -142,6 +163,18 @@ fn a_rigid_arm_swung_into_a_structure_follows_the_closed_form() {
     let (m_eff, v0) = (inertia / (r * r), rate.abs() * r);
     let exact = v0 * (k * m_eff).sqrt();
     println!("peak {peak:.1} N at {r:.3} m vs {exact:.1} N");
+    validated_rel(
+        &CONTACT_SCENE,
+        &format!(
+            "rigid arm swung at 0.02 rad/s into a structure (a box, linear 7.5e6 N/m) through the pipeline: peak force (m_eff = J/r² = {} kg)",
+            common::sig(m_eff, 4)
+        ),
+        exact,
+        "v₀ √(k m_eff), v₀ = θ̇ r",
+        peak,
+        "N",
+        0.01,
+    );
     assert!(rel(peak, exact) < 0.01, "peak {peak} vs {exact}");
 }
 
@@ -161,7 +194,7 @@ fn the_guide_holds_the_string_as_a_cantilever_from_its_hand() {
     assert_eq!(arm_guide.impact_count, 0, "the arm passes clear of the guide");
     let final_force = *series.pad_force_n[k].last().unwrap();
     let held = s.payload.string().unwrap();
-    let pipe = held.pipe.pipe;
+    let pipe = &held.pipe.pipe;
     let (r_out, r_in) = (0.5 * pipe.outer_diameter_m, 0.5 * pipe.outer_diameter_m - pipe.wall_m);
     // Steel at 206 GPa, as the string model takes it.
     let ei = 2.06e11 * std::f64::consts::FRAC_PI_4 * (r_out.powi(4) - r_in.powi(4));
@@ -172,6 +205,15 @@ fn the_guide_holds_the_string_as_a_cantilever_from_its_hand() {
     let guide_depth = (final_force / stiffness).powf(1.0 / exponent);
     let exact = 3.0 * ei * (3e-3 - guide_depth) / a.powi(3);
     println!("string on the guide: {final_force:.2} N vs {exact:.2} N (a = {a:.2} m)");
+    validated_rel(
+        &CONTACT_SCENE,
+        &format!("string_strike.toml, the arm at rest at 90°: the guide's force on the flexible string (a = {a:.2} m)"),
+        exact,
+        "the overhang as a cantilever from its hand, 3EI(δ − δ_g)/a³",
+        final_force,
+        "N",
+        0.03,
+    );
     assert!(rel(final_force, exact) < 0.03, "{final_force} N vs {exact} N");
 }
 
@@ -198,6 +240,15 @@ fn auto_picks_the_pad_face_path_only_within_a_tenth_of_a_percent_of_the_pipeline
         s.contact.detection = Detection::Pipeline;
         let pipeline = peak(&s);
         println!("{}: pad-face {pad_face:.2} N, pipeline {pipeline:.2} N", s.name);
+        validated_rel(
+            &MODEL_CHOICE,
+            &format!("{}: peak force by the pad-face path `auto` picks", s.name),
+            pipeline,
+            "rapier's collision pipeline, same scene",
+            pad_face,
+            "N",
+            1e-3,
+        );
         assert!(rel(pad_face, pipeline) < 1e-3, "{}: {pad_face} vs {pipeline}", s.name);
     }
 }

@@ -3,6 +3,8 @@
 //! and the errors bad input gives with nothing written (docs/envelope.md). Short lifts of the
 //! default scenario (7 s, 0.5 s of settling) keep it quick.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use pipearm::envelope::cases::MethodChoice;
@@ -102,6 +104,26 @@ fn the_runs_are_stratified_and_the_percentiles_are_the_runs() {
             let (i, f) = (h.floor() as usize, h - h.floor());
             peaks[i] + f * (peaks[(i + 1).min(7)] - peaks[i])
         };
+        let worst = [(group.peak_force_n.p50, 0.5), (group.peak_force_n.p95, 0.95), (group.peak_force_n.p5, 0.05)]
+            .iter()
+            .map(|(got, p)| (got - type7(*p)).abs() / peaks[7])
+            .fold(0.0, f64::max);
+        common::validated_row(
+            &common::FIT,
+            &format!(
+                "`pipearm envelope`, 8 Latin-hypercube runs of the {} string (7 s lift): p5, p50, p95 of the peak force",
+                group.per.as_deref().unwrap_or("one")
+            ),
+            "the runs' own peaks, percentiles of type 7 (Hyndman & Fan 1996)",
+            &format!(
+                "{} N, {} N, {} N",
+                common::sig(group.peak_force_n.p5, 5),
+                common::sig(group.peak_force_n.p50, 5),
+                common::sig(group.peak_force_n.p95, 5)
+            ),
+            &format!("{} of the max", common::relative(worst)),
+            "≤ 1e-9 of the max",
+        );
         assert_eq!(group.peak_force_n.max, peaks[7]);
         for (got, p) in [(group.peak_force_n.p50, 0.5), (group.peak_force_n.p95, 0.95), (group.peak_force_n.p5, 0.05)] {
             assert!((got - type7(p)).abs() <= 1e-9 * peaks[7], "p{p}: {got} against {}", type7(p));

@@ -3,6 +3,8 @@
 //! scenario's own reduced model (at 1 ms, then at 0.5 ms for the numerical uncertainty) and must
 //! recover both within 5 %, its 95 % intervals covering the truth.
 
+mod common;
+
 use std::path::Path;
 
 use pipearm::arm::Fidelity;
@@ -83,6 +85,32 @@ fn a_fit_on_the_reduced_model_recovers_the_fe_arms_damping_and_pad_stiffness() {
     let problem = Problem::new(&lumped(&path), &keys, settings()).unwrap();
     let report = fit(&problem, &signals, true, &LmOptions::default()).unwrap();
     println!("{}", serde_json::to_string_pretty(&report).unwrap());
+    let case = "fit of the default (string lumped), modal model at 1 ms then 0.5 ms, to the fe arm's tip and pad force at 0.5 ms, 1 % noise, clock 7 ms late";
+    common::validated_abs(
+        &common::FIT,
+        &format!("{case}: shift"),
+        -SHIFT_S,
+        "the clock's known lag",
+        report.shift_s,
+        "s",
+        1e-3,
+    );
+    for (fitted, truth) in report.parameters.iter().zip([TRUE_DAMPING_RATIO, TRUE_STIFFNESS]) {
+        let [lo, hi] = fitted.interval_95;
+        common::validated_row(
+            &common::FIT,
+            &format!("{case}: `{}`", fitted.key),
+            &format!("{} (the measurements' model)", common::sig(truth, 4)),
+            &format!(
+                "{} (95 % interval {} … {})",
+                common::sig(fitted.value, 5),
+                common::sig(lo, 5),
+                common::sig(hi, 5)
+            ),
+            &common::relative((fitted.value - truth).abs() / truth),
+            "< 5 %; the interval covers the truth",
+        );
+    }
     assert!((report.shift_s + SHIFT_S).abs() < 1e-3, "shift {} s against {}", report.shift_s, -SHIFT_S);
     for (fitted, truth) in report.parameters.iter().zip([TRUE_DAMPING_RATIO, TRUE_STIFFNESS]) {
         let error = (fitted.value - truth).abs() / truth;
@@ -121,6 +149,15 @@ fn the_damping_override_sets_the_arms_measured_decay() {
         let (summary, _) = run(&scenario.model, None).unwrap();
         let measured = summary.residual.damping_ratio;
         println!("ζ = {zeta}: measured {measured}");
+        common::validated_rel(
+            &common::FIT,
+            &format!("default lift without its pad, `arm.damping_ratios = [{zeta}]`: the tip's decay"),
+            zeta,
+            "the damping ratio set",
+            measured,
+            "",
+            0.15,
+        );
         assert!((measured - zeta).abs() < 0.15 * zeta, "ζ = {zeta}: the tip decays at {measured}");
     }
 }
@@ -165,6 +202,15 @@ fn fit_on_the_command_line_writes_a_report_and_a_scenario_that_loads() {
     // Noise-free, from the same model: the misfit's minimum is the truth, but the default's
     // strikes are gentle (0.8 kN) and several, its valley in the pad's stiffness shallow and
     // rippled by the impacts' count; Levenberg–Marquardt stops 1.5 % short of it.
+    common::validated_rel(
+        &common::FIT,
+        "`pipearm fit` on the command line: the pad's stiffness from a noise-free run of the default with a stiffer pad",
+        TRUE_STIFFNESS,
+        "the stiffness that made the measured file",
+        value,
+        "N/m",
+        0.02,
+    );
     assert!((value - TRUE_STIFFNESS).abs() < 0.02 * TRUE_STIFFNESS, "fitted {value} against {TRUE_STIFFNESS}");
     let fitted = Scenario::load(&out.join("default.fitted.toml")).unwrap().model;
     let ForceLaw::HuntCrossley { stiffness, .. } = fitted.dampeners[0].law else { panic!() };

@@ -1,6 +1,9 @@
 //! Integrator stability and accuracy against closed-form facts: the stability intervals and
 //! orders of Hairer & Wanner, Solving Ordinary Differential Equations I–II.
 
+mod common;
+
+use common::{INTEGRATORS, validated_abs, validated_rel};
 use nalgebra::{DMatrix, DVector};
 use pipearm::integrate::{Dynamics, ExplicitEuler, GeneralizedAlpha, Integrator, Rk4, State, SymplecticEuler};
 
@@ -86,6 +89,15 @@ fn stability_limit(make: &dyn Fn() -> Box<dyn Integrator>, lo: f64, hi: f64) -> 
 fn symplectic_euler_limit_is_omega_h_2() {
     let limit = stability_limit(&|| Box::new(SymplecticEuler), 1.0, 3.0);
     println!("symplectic Euler: measured limit ωh = {limit:.5} (theory 2)");
+    validated_rel(
+        &INTEGRATORS,
+        "symplectic Euler: stability limit ωh, oscillator",
+        2.0,
+        "Hairer & Wanner",
+        limit,
+        "",
+        0.02,
+    );
     assert!((limit / 2.0 - 1.0).abs() < 0.02, "measured {limit}");
 }
 
@@ -93,6 +105,15 @@ fn symplectic_euler_limit_is_omega_h_2() {
 fn linear_acceleration_newmark_limit_is_2_sqrt_3() {
     let limit = stability_limit(&|| Box::new(GeneralizedAlpha::newmark(1.0 / 6.0, 0.5).unwrap()), 2.0, 5.0);
     println!("Newmark β = 1/6: measured limit ωh = {limit:.5} (theory 2√3 = 3.46410)");
+    validated_rel(
+        &INTEGRATORS,
+        "Newmark β = 1/6, γ = 1/2: stability limit ωh, oscillator",
+        12f64.sqrt(),
+        "2√3, Hairer & Wanner",
+        limit,
+        "",
+        0.02,
+    );
     assert!((limit / 12f64.sqrt() - 1.0).abs() < 0.02, "measured {limit}");
 }
 
@@ -100,16 +121,35 @@ fn linear_acceleration_newmark_limit_is_2_sqrt_3() {
 fn rk4_limit_is_2_sqrt_2() {
     let limit = stability_limit(&|| Box::new(Rk4::default()), 2.0, 4.0);
     println!("RK4: measured limit ωh = {limit:.5} (theory 2√2 = 2.82843)");
+    validated_rel(
+        &INTEGRATORS,
+        "RK4: stability limit ωh, oscillator",
+        8f64.sqrt(),
+        "2√2, Hairer & Wanner",
+        limit,
+        "",
+        0.02,
+    );
     assert!((limit / 8f64.sqrt() - 1.0).abs() < 0.02, "measured {limit}");
 }
 
 #[test]
 fn explicit_euler_grows_at_every_step_size() {
-    for omega_h in [1e-3, 1e-2, 0.1, 1.0] {
-        let steps = 100;
-        let growth = energy_growth(&mut ExplicitEuler, omega_h, steps);
-        // Spectral radius sqrt(1 + ω²h²) per step: energy grows by (1 + ω²h²)^steps exactly.
-        let exact = (1.0 + omega_h * omega_h).powi(steps as i32);
+    let omega_hs = [1e-3, 1e-2, 0.1, 1.0];
+    let steps = 100;
+    let growths: Vec<f64> = omega_hs.iter().map(|&omega_h| energy_growth(&mut ExplicitEuler, omega_h, steps)).collect();
+    // Spectral radius sqrt(1 + ω²h²) per step: energy grows by (1 + ω²h²)^steps exactly.
+    let exacts: Vec<f64> = omega_hs.iter().map(|omega_h| (1.0 + omega_h * omega_h).powi(steps as i32)).collect();
+    common::validated_rel_all(
+        &INTEGRATORS,
+        "explicit Euler: energy growth over 100 steps at ωh = 0.001, 0.01, 0.1, 1",
+        &exacts,
+        "(1 + ω²h²)¹⁰⁰, the spectral radius √(1 + ω²h²) per step",
+        &growths,
+        "",
+        1e-9,
+    );
+    for ((omega_h, growth), exact) in omega_hs.into_iter().zip(growths).zip(exacts) {
         assert!(growth > 1.0, "ωh = {omega_h}: no growth");
         assert!((growth / exact - 1.0).abs() < 1e-9, "ωh = {omega_h}: {growth} vs {exact}");
     }
@@ -117,8 +157,21 @@ fn explicit_euler_grows_at_every_step_size() {
 
 #[test]
 fn average_acceleration_is_unconditionally_stable_and_conserves_energy() {
-    for omega_h in [0.1, 1.0, 10.0, 1e3] {
-        let growth = energy_growth(&mut GeneralizedAlpha::average_acceleration(), omega_h, 10_000);
+    let omega_hs = [0.1, 1.0, 10.0, 1e3];
+    let growths: Vec<f64> = omega_hs
+        .iter()
+        .map(|&omega_h| energy_growth(&mut GeneralizedAlpha::average_acceleration(), omega_h, 10_000))
+        .collect();
+    let worst = growths.iter().map(|g| (g - 1.0).abs()).fold(0.0, f64::max);
+    common::validated_row(
+        &INTEGRATORS,
+        "Newmark average acceleration: energy ratio after 10 000 steps at ωh = 0.1, 1, 10, 1000",
+        "1: unconditionally stable, no numerical damping",
+        &growths.iter().map(|g| common::sig(*g, 12)).collect::<Vec<_>>().join(", "),
+        &common::relative(worst),
+        "< 1e-10",
+    );
+    for (omega_h, growth) in omega_hs.into_iter().zip(growths) {
         assert!((growth - 1.0).abs() < 1e-10, "ωh = {omega_h}: energy ratio {growth}");
     }
 }
@@ -143,11 +196,29 @@ fn high_frequency_radius(integrator: &mut dyn Integrator) -> f64 {
 fn generalized_alpha_and_hht_damp_infinite_frequencies_to_rho_inf() {
     for rho in [0.0, 0.5, 0.8, 1.0] {
         let measured = high_frequency_radius(&mut GeneralizedAlpha::chung_hulbert(rho).unwrap());
+        validated_abs(
+            &INTEGRATORS,
+            &format!("generalized-α, ρ∞ = {rho}: spectral radius at ωh = 10⁶"),
+            rho,
+            "ρ∞, Chung & Hulbert 1993",
+            measured,
+            "",
+            0.01,
+        );
         assert!((measured - rho).abs() < 0.01, "rho_inf {rho}: measured {measured}");
     }
     for alpha in [-0.3, -0.1] {
         let rho = (1.0 + alpha) / (1.0 - alpha);
         let measured = high_frequency_radius(&mut GeneralizedAlpha::hht(alpha).unwrap());
+        validated_abs(
+            &INTEGRATORS,
+            &format!("HHT-α, α = {alpha}: spectral radius at ωh = 10⁶"),
+            rho,
+            "(1 + α)/(1 − α), Hilber, Hughes & Taylor 1977",
+            measured,
+            "",
+            0.02,
+        );
         assert!((measured - rho).abs() < 0.02, "HHT alpha {alpha}: measured {measured} vs {rho}");
     }
 }
@@ -166,6 +237,22 @@ fn generalized_alpha_is_second_order() {
         (s.x[0] - 1.0).abs() + s.v[0].abs()
     };
     let (e1, e2, e3) = (err(100), err(200), err(400));
+    let orders = [(e1 / e2).log2(), (e2 / e3).log2()];
+    common::validated_row(
+        &INTEGRATORS,
+        "generalized-α (ρ∞ = 0.8): order from the error after one period at 100, 200, 400 steps",
+        "2 (Chung & Hulbert 1993)",
+        &format!(
+            "errors {}, {}, {}: orders {}, {}",
+            common::sig(e1, 2),
+            common::sig(e2, 2),
+            common::sig(e3, 2),
+            common::sig(orders[0], 3),
+            common::sig(orders[1], 3)
+        ),
+        &common::sig(orders.iter().map(|o| (o - 2.0).abs()).fold(0.0, f64::max), 2),
+        "< 0.15",
+    );
     for ratio in [e1 / e2, e2 / e3] {
         assert!((ratio.log2() - 2.0).abs() < 0.15, "order {} from {e1} {e2} {e3}", ratio.log2());
     }

@@ -7,7 +7,7 @@ mod common;
 
 use std::path::Path;
 
-use common::{model, rel, uniform};
+use common::{PIN, model, rel, uniform};
 use pipearm::arm::{ArmModel, ArmOptions, ArmSimulation, Fidelity};
 use pipearm::scenario::Scenario;
 
@@ -22,6 +22,7 @@ fn kept_modes_and_residual_give_the_cantilevers_static_flexibility_at_the_pin() 
     let expected =
         [[a / ea + y * y * a / ei, -y * a * a / (2.0 * ei)], [-y * a * a / (2.0 * ei), a.powi(3) / (3.0 * ei)]];
     let options = ArmOptions { gravity_m_s2: 0.0, ..ArmOptions::default() };
+    let mut worst = 0.0_f64;
     for modes in [1, 2, 4, 8, 20] {
         let arm =
             ArmModel::new(model(uniform(length, ei, 30.0, 8)), Fidelity::Modal { modes }, options.clone()).unwrap();
@@ -31,6 +32,7 @@ fn kept_modes_and_residual_give_the_cantilevers_static_flexibility_at_the_pin() 
             let q = arm.static_deflection_under(0.0, &pin.rows[j]).unwrap();
             for i in 0..2 {
                 let total = pin.rows[i].dot(&q) + pin.residual_flexibility_m_per_n[i][j];
+                worst = worst.max((total - expected[i][j]).abs() / expected[1][1]);
                 assert!(
                     (total - expected[i][j]).abs() < 1e-9 * expected[1][1],
                     "modal({modes}): G[{i}][{j}] = {total:e} against {:e} m/N",
@@ -39,6 +41,17 @@ fn kept_modes_and_residual_give_the_cantilevers_static_flexibility_at_the_pin() 
             }
         }
     }
+    common::validated_row(
+        &PIN,
+        "4 m cantilever, pin at 1.5 m on a 0.3 m bracket, modal(1, 2, 4, 8, 20): kept modes + residual, 2 × 2 flexibility",
+        &format!(
+            "beam theory: G_uu = a/EA + y²a/EI, G_uv = −y a²/2EI, G_vv = a³/3EI = {} m/N",
+            common::sig(expected[1][1], 4)
+        ),
+        &format!("largest difference {} of G_vv", common::relative(worst)),
+        &common::relative(worst),
+        "< 1e-9 of G_vv",
+    );
 }
 
 #[test]
@@ -52,6 +65,18 @@ fn the_residual_is_zero_where_no_mode_is_truncated_and_grows_as_modes_are_droppe
     let every = residual(Fidelity::Modal { modes: all });
     assert!(every.abs() < 1e-9 * first, "{every:e} m/N with every mode kept, {first:e} with one");
     let shrinking: Vec<f64> = [1, 2, 3, 6, 12].map(|modes| residual(Fidelity::Modal { modes })).to_vec();
+    common::validated(
+        &PIN,
+        "residual flexibility G_vv at the pin: fe, every mode kept, then modal(1, 2, 3, 6, 12)",
+        "0 where no mode is truncated; shrinking as modes are kept",
+        &format!(
+            "fe {}; every mode {} m/N; {} m/N",
+            residual(Fidelity::Fe),
+            common::sig(every, 2),
+            shrinking.iter().map(|r| common::sig(*r, 3)).collect::<Vec<_>>().join(", ")
+        ),
+        "fe exactly 0; every mode < 1e-9 of modal(1)'s; decreasing, positive",
+    );
     assert!(shrinking.windows(2).all(|w| w[1] < w[0]) && shrinking[4] > 0.0, "{shrinking:?}");
 }
 
@@ -91,6 +116,19 @@ fn three_modes_with_the_pin_residual_give_the_fe_arms_coupled_frequencies() {
     let fe = coupled_hz(Fidelity::Fe, 70.0);
     let modal = coupled_hz(Fidelity::Modal { modes: 3 }, 80.0);
     println!("coupled frequencies: fe {fe:.2?} Hz, modal(3) {modal:.2?} Hz");
+    let nearest: Vec<f64> = fe
+        .iter()
+        .map(|f| modal.iter().copied().min_by(|a, b| rel(*a, *f).total_cmp(&rel(*b, *f))).unwrap_or(f64::NAN))
+        .collect();
+    common::validated_rel_all(
+        &PIN,
+        "hydraulic.toml, arm and cylinder linearised at rest at 90°: coupled frequencies up to 70 Hz, modal(3) + pin residual",
+        &fe,
+        "the full FE arm with the cylinder, no truncation, no residual",
+        &nearest,
+        "Hz",
+        0.02,
+    );
     assert!(fe.len() >= 3, "{fe:?}");
     for f in &fe {
         let nearest = modal.iter().copied().min_by(|a, b| rel(*a, *f).total_cmp(&rel(*b, *f))).unwrap();

@@ -163,13 +163,3 @@ fn old_spellings_run_the_same_with_a_note() {
     assert!(!peak(&new_run).is_empty());
     std::fs::remove_dir_all(&dir).ok();
 }
-
-/// Every command's `--help` ends with examples a user can paste.
-#[test]
-fn every_commands_help_has_examples() {
-    for command in ["run", "check", "seed", "bench", "init", "modes", "sweep", "envelope", "design"] {
-        let out = pipearm(&[command, "--help"]);
-        let text = String::from_utf8_lossy(&out.stdout);
-        assert!(out.status.success() && text.contains("Examples:"), "{command}: {text}");
-    }
-}

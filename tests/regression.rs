@@ -55,7 +55,7 @@ fn a_ten_percent_stiffer_pad_fails_the_check() {
 fn a_heavier_string_fails_the_check() {
     let mut s = scenario("default");
     let PayloadSpec::String { string, .. } = &mut s.spec.payload else { panic!("default payload changed") };
-    string.size = "4-1/2".into();
+    string.size = Some("4-1/2".into());
     let s = Scenario::from_spec(&s.path, s.spec).unwrap();
     let failed = failures(&s, "default");
     assert!(failed.contains(&"arm-vertical_stop.peak_force_n".to_string()), "{failed:?}");

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::rel;
+use common::{CONTACT_SCENE, FRICTION_CLAMP, TIME_STEP, rel, validated, validated_rel};
 use std::path::Path;
 
 use pipearm::arm::{ArmModel, ArmSimulation, Fidelity, HubDrive};
@@ -25,6 +25,13 @@ fn the_default_arm_strikes_its_stop_repeatedly() {
     let pair = &summary.pairs[0];
     assert!(pair.impact_count >= 2, "impacts: {}", pair.impact_count);
     assert!(pair.peak_force_n > 0.0 && pair.peak_time_s >= s.drive_end_s() - 3.0);
+    validated(
+        &common::SEED,
+        "the default lift: largest tip vibration w/L",
+        "below 2 % of the arm length (the seed paper, §5)",
+        &format!("1/{:.0} of L, {} impacts on the stop", 1.0 / summary.max_w_over_l, pair.impact_count),
+        "< 0.02",
+    );
     // The seed's §5: the tip vibrates by less than 2 % of the arm length.
     assert!(summary.max_w_over_l < 0.02);
 }
@@ -83,6 +90,16 @@ fn a_rigid_arm_swinging_into_a_pad_follows_the_closed_forms() {
         };
         let tc = t_last - t_first;
         println!("{law:?}: peak {peak:.1} N vs {exact_peak:.1} N, contact {tc:.5} s vs {exact_tc:.5} s");
+        let (name, source) = match law {
+            ForceLaw::Linear { .. } => ("linear pad (7.5e6 N/m)", "v₀ √(k m_eff), π √(m_eff/k)"),
+            _ => ("Hertz pad (2e9, n = 1.5)", "Hertz: K δ*^1.5, 3.218 (m_eff²/K²v₀)^(1/5)"),
+        };
+        let case = format!(
+            "rigid arm swung freely at 0.02 rad/s into the lowering scene's {name}, through the scene (m_eff = J/r² = {} kg)",
+            common::sig(m_eff, 4)
+        );
+        validated_rel(&CONTACT_SCENE, &format!("{case}: peak force"), exact_peak, source, peak, "N", 0.01);
+        validated_rel(&CONTACT_SCENE, &format!("{case}: contact time"), exact_tc, source, tc, "s", 0.02);
         assert!(rel(peak, exact_peak) < 0.01, "peak {peak} vs {exact_peak}");
         assert!(rel(tc, exact_tc) < 0.02, "contact time {tc} vs {exact_tc}");
     }
@@ -106,6 +123,15 @@ fn rapier_at_the_scene_step_converges_on_compliant_as_the_pad_mass_goes_to_zero(
     let (at_scene_step, _) = run(&s, None).unwrap();
     let peak = at_scene_step.pairs[0].peak_force_n;
     println!("scene step, 1 kg pad: rapier {peak:.1} N vs compliant {reference:.1} N");
+    validated_rel(
+        &CONTACT_SCENE,
+        "default lift, linear pad (7.5e6 N/m, 2e3 N·s/m): `rapier` with its 1 kg pad body at the scene's 3 ms step, peak force",
+        reference,
+        "`compliant` at 0.3 ms",
+        peak,
+        "N",
+        0.10,
+    );
     assert!(rel(peak, reference) < 0.10, "{peak} vs {reference}");
     fine.contact.method = ContactMethod::Rapier;
     let mut differences = Vec::new();
@@ -118,6 +144,13 @@ fn rapier_at_the_scene_step_converges_on_compliant_as_the_pad_mass_goes_to_zero(
     }
     // It shrinks with the mass down to the two methods' own difference at this step (0.3 %).
     let floor = 0.005;
+    validated(
+        &CONTACT_SCENE,
+        "the same at 0.3 ms, pad bodies of 30, 3, 0.3, 0.03 kg: peak force",
+        &format!("`compliant` at 0.3 ms, {} N, approached as the pad's mass goes to zero", common::sig(reference, 5)),
+        &differences.iter().map(|d| common::relative(*d)).collect::<Vec<_>>().join(", "),
+        "shrinking to below 0.5 %; 30 kg off by more than 5 %",
+    );
     assert!(differences.windows(2).all(|d| d[1] < d[0] || d[1] < floor), "{differences:?}");
     assert!(differences[0] > 10.0 * floor && differences[3] < floor, "{differences:?}");
 }
@@ -135,6 +168,15 @@ fn the_heavy_string_runs_stable_at_the_default_step() {
     let (fine, _) = run(&fine, None).unwrap();
     let (a, b) = (coarse.pairs[0].peak_force_n, fine.pairs[0].peak_force_n);
     println!("4-1/2 in string: peak force {a:.1} N at dt, {b:.1} N at dt/4");
+    validated_rel(
+        &TIME_STEP,
+        "string_4half.toml (200 kg string, both hands) at its own step: peak pad force",
+        b,
+        "the same scene at a quarter of the step",
+        a,
+        "N",
+        0.1,
+    );
     assert!(rel(a, b) < 0.1, "{a} vs {b}");
 }
 
@@ -172,6 +214,15 @@ fn the_friction_clamp_holds_below_the_slip_load_and_slips_above_it() {
         // Holds with 25 % margin.
         let (slip, _) = friction_hold(1.25 * weight / (2.0 * mu), 1.0, string);
         println!("{string} string, 2μN = 1.25 m g: slip {slip:.6} m in 1 s");
+        common::validated_abs(
+            &FRICTION_CLAMP,
+            &format!("default arm standing at 90°, {string} string in one hand's jaws, 2μN = 1.25 m g: slip in 1 s"),
+            0.0,
+            "Coulomb: holds while 2μN > m g",
+            slip,
+            "m",
+            1e-3,
+        );
         assert!(slip.abs() < 1e-3, "{string} string slipped {slip} m while 2μN > m g");
         // Slides at 25 % short of the load.
         let squeeze = 0.75 * weight / (2.0 * mu);
@@ -179,6 +230,15 @@ fn the_friction_clamp_holds_below_the_slip_load_and_slips_above_it() {
         let accel = g - 2.0 * mu * squeeze / mass;
         let expected = -0.5 * accel;
         println!("{string} string, 2μN = 0.75 m g: slip {slip:.4} m in 1 s, Coulomb {expected:.4} m");
+        validated_rel(
+            &FRICTION_CLAMP,
+            &format!("the same, 2μN = 0.75 m g: slip in 1 s ({string} string)"),
+            expected,
+            "Coulomb: slides ½ (g − 2μN/m) t²",
+            slip,
+            "m",
+            0.05,
+        );
         assert!(rel(slip, expected) < 0.05, "{string} string: slip {slip} m vs {expected} m");
     }
 }
@@ -252,6 +312,38 @@ fn a_string_sliding_in_a_friction_clamp_lands_on_a_structure_and_stops() {
             mass * g - friction_n,
             mass * g + friction_n
         );
+        let case = format!("the sliding {string} string onto a frictionless block 0.1 m below (1e7 N/m)");
+        validated_rel(
+            &FRICTION_CLAMP,
+            &format!("{case}: landing time"),
+            arrival_s,
+            "√(2d/a), a = g − 2μN/m",
+            landed_s.unwrap_or(f64::NAN),
+            "s",
+            0.05,
+        );
+        validated(
+            &FRICTION_CLAMP,
+            &format!("{case}: depth into the block"),
+            &format!("at most twice v₀ √(m/k) = 2 × {} mm", common::sig(1e3 * impact_depth_m, 3)),
+            &format!("{} mm", common::sig(1e3 * (-gap - lowest), 3)),
+            "< 2 v₀ √(m/k)",
+        );
+        validated(
+            &FRICTION_CLAMP,
+            &format!("{case}: force on the block at rest"),
+            &format!(
+                "m g ∓ 2μN = {} ..= {} N (the jaws' static friction)",
+                common::sig(mass * g - friction_n, 4),
+                common::sig(mass * g + friction_n, 4)
+            ),
+            &format!(
+                "{} N, resting {} mm into the block",
+                common::sig(on_block, 4),
+                common::sig(-1e3 * (slip + gap), 2)
+            ),
+            "within the band (±1 %); rest within 1 mm",
+        );
         assert!(rel(landed_s.expect("the string reaches the block"), arrival_s) < 0.05);
         assert!(-gap - lowest < 2.0 * impact_depth_m, "the string went {} m past the block's face", -gap - lowest);
         assert!((slip + gap).abs() < 1e-3, "the string rests {slip} m from its grip, the block at {gap} m");
@@ -283,6 +375,26 @@ fn the_friction_clamped_heavy_string_lifts_stable_at_the_default_step() {
             rigid.pairs[0].peak_force_n,
             1e-6 * held.max_bending_stress_pa,
             1e-6 * fast.max_bending_stress_pa
+        );
+        let case =
+            format!("200 kg string held by friction in the gripper through the default lift, {} string", held.model);
+        validated_rel(
+            &FRICTION_CLAMP,
+            &format!("{case}: peak pad force"),
+            rigid.pairs[0].peak_force_n,
+            "the rigid clamp, same string and step",
+            friction.pairs[0].peak_force_n,
+            "N",
+            0.05,
+        );
+        validated_rel(
+            &FRICTION_CLAMP,
+            &format!("{case}: largest bending stress at the hand"),
+            fast.max_bending_stress_pa,
+            "the rigid clamp",
+            held.max_bending_stress_pa,
+            "Pa",
+            0.05,
         );
         assert!(series.tip_deflection_m.iter().all(|d| d[1].is_finite()));
         assert_eq!(held.model, fast.model, "the clamp does not change the string's fidelity");

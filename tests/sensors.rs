@@ -3,6 +3,8 @@
 //! arm about its pivot during a lift, the encoder against the prescribed profile; and the
 //! scenario's checks of `[[sensors]]`.
 
+mod common;
+
 use std::path::Path;
 
 use pipearm::arm::Fidelity;
@@ -40,16 +42,26 @@ fn accelerometer_on_a_rigid_arm_in_uniform_rotation() {
     let (_, series) = run(&model, Some(Fidelity::Rigid)).unwrap();
     let (w, g) = (quarter / duration_s, model.physics.gravity_m_s2);
     let mut checked = 0;
+    let mut worst = 0.0_f64;
     for (t, [axial, transverse]) in series.t_s.iter().zip(channel(&series, "tip")) {
         if *t < 1e-3 || *t > duration_s - 1e-3 {
             continue; // the rate jumps at start and stop
         }
         let theta = w * t;
         let expected = [-w * w * length + g * theta.sin(), g * theta.cos()];
+        worst = worst.max((axial - expected[0]).abs().max((transverse - expected[1]).abs()) / g);
         assert!((axial - expected[0]).abs() < 1e-9 * g, "t {t}: axial {axial} vs {}", expected[0]);
         assert!((transverse - expected[1]).abs() < 1e-9 * g, "t {t}: transverse {transverse} vs {}", expected[1]);
         checked += 1;
     }
+    common::validated_row(
+        &common::SENSORS,
+        "tip accelerometer, rigid default arm turning uniformly 0 → 90° in 2 s, at every step",
+        "(−ω²L + g sin θ, g cos θ): centripetal and gravity in the arm's frame",
+        &format!("largest difference {} g over {checked} steps", common::sig(worst, 2)),
+        &format!("{} g", common::sig(worst, 2)),
+        "< 1e-9 g",
+    );
     assert!(checked > 500, "{checked} steps checked");
 }
 
@@ -88,6 +100,34 @@ fn static_cantilever_moment_and_stress() {
     let g = model.physics.gravity_m_s2;
     for fidelity in [Fidelity::Modal { modes: 2 }, Fidelity::Fe] {
         let (_, series) = run(&model, Some(fidelity)).unwrap();
+        let expected: Vec<f64> = stations
+            .iter()
+            .map(|&s| {
+                let outboard: f64 = masses.iter().filter(|m| m.0 > s).map(|(x, m)| m * (x - s)).sum();
+                g * (0.5 * mu * (length - s).powi(2) + outboard)
+            })
+            .collect();
+        let readings: Vec<[f64; 2]> =
+            (0..stations.len()).map(|i| *channel(&series, &format!("gauge{i}")).last().unwrap()).collect();
+        let case = format!("default arm held horizontal, {fidelity}: strain gauges at 0, 4.5, 8.5 m");
+        common::validated_rel_all(
+            &common::SENSORS,
+            &format!("{case}, moment"),
+            &expected,
+            "g (μ(L − s)²/2 + Σ m_i (x_i − s)), the URDF's section and masses",
+            &readings.iter().map(|r| r[0]).collect::<Vec<_>>(),
+            "N·m",
+            1e-6,
+        );
+        common::validated_rel_all(
+            &common::SENSORS,
+            &format!("{case}, stress"),
+            &expected.iter().map(|m| m * (h / 2.0) / second_moment).collect::<Vec<_>>(),
+            "M c / I",
+            &readings.iter().map(|r| r[1]).collect::<Vec<_>>(),
+            "Pa",
+            1e-6,
+        );
         for (i, &s) in stations.iter().enumerate() {
             let outboard: f64 = masses.iter().filter(|m| m.0 > s).map(|(x, m)| m * (x - s)).sum();
             let expected = g * (0.5 * mu * (length - s).powi(2) + outboard);
@@ -106,6 +146,15 @@ fn static_cantilever_moment_and_stress() {
         let [axial, across] = *channel(&series, "hand").last().unwrap();
         assert!((axial.hypot(across) / g - 1.0).abs() < 1e-9, "{fidelity}: hand reads ({axial}, {across})");
         let tolerance = if fidelity == Fidelity::Fe { 1e-6 } else { 1e-2 };
+        common::validated_rel(
+            &common::SENSORS,
+            &format!("the same, {fidelity}: accelerometer at the lower hand (6.0 m), axial reading"),
+            g * slope.sin(),
+            "g sin φ, φ the closed-form cantilever slope there",
+            axial,
+            "m/s²",
+            tolerance,
+        );
         assert!(
             (axial / (g * slope.sin()) - 1.0).abs() < tolerance,
             "{fidelity}: axial {axial} vs {}",
@@ -138,6 +187,14 @@ fn root_moment_balances_the_drive_torque_during_a_lift() {
             .fold(0.0, f64::max);
         // Foreshortening (second order in q) is in the torque, not in the summed moment.
         eprintln!("{fidelity}: worst |τ − J θ̈ − M| = {:.2e} of the peak torque", worst / scale);
+        common::validated_row(
+            &common::SENSORS,
+            &format!("root strain gauge, default lift without its pad, {fidelity}: at every step"),
+            "τ − J_hub θ̈, the moment balance of the arm about the pivot (τ from the equations' hub row)",
+            &format!("largest difference {} N·m", common::sig(worst, 2)),
+            &format!("{} of the peak torque", common::relative(worst / scale)),
+            "< 1e-4 of the peak torque",
+        );
         assert!(worst < 1e-4 * scale, "{fidelity}: worst |τ − J θ̈ − M| = {worst} N·m of {scale}");
     }
 }
@@ -162,6 +219,14 @@ fn root_moment_balances_the_drive_torque_through_the_impacts() {
         .map(|(((tau, acc), [moment, _]), _)| (tau - hub_inertia * acc - moment).abs())
         .fold(0.0, f64::max);
     eprintln!("in contact: worst |τ − J θ̈ − M| = {:.2e} of the peak torque", worst / scale);
+    common::validated_row(
+        &common::SENSORS,
+        "root strain gauge, default lift with its pad: at every step in contact",
+        "τ − J_hub θ̈, the impacts' force an outboard load",
+        &format!("largest difference {} N·m", common::sig(worst, 2)),
+        &format!("{} of the peak torque", common::relative(worst / scale)),
+        "< 1e-4 of the peak torque",
+    );
     assert!(worst < 1e-4 * scale, "worst |τ − J θ̈ − M| in contact = {worst} N·m of {scale}");
 }
 
@@ -172,6 +237,17 @@ fn encoder_reads_the_prescribed_profile() {
     model.time.settle_s = 0.5;
     model.sensors = vec![sensor(&model, "hub_encoder", "encoder", None)];
     let (summary, series) = run(&model, None).unwrap();
+    let exact = series.t_s.iter().zip(channel(&series, "hub_encoder")).all(|(t, [angle, rate])| {
+        let hub = model.drive.motion.sample(*t);
+        (*angle, *rate) == (hub.angle_rad, hub.rate_rad_s)
+    });
+    common::validated(
+        &common::SENSORS,
+        "hub encoder on the default lift, at every step",
+        "the prescribed profile's angle and rate",
+        if exact { "equal, bit for bit" } else { "different" },
+        "equal",
+    );
     for (t, [angle, rate]) in series.t_s.iter().zip(channel(&series, "hub_encoder")) {
         let hub = model.drive.motion.sample(*t);
         assert_eq!((*angle, *rate), (hub.angle_rad, hub.rate_rad_s), "t {t}");

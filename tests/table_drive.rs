@@ -2,6 +2,8 @@
 //! are refused naming the file, the column and the row, with nothing written; a drive faster
 //! than the lift joint's URDF velocity is refused, and a torque beyond its effort is flagged.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use pipearm::drive::MotionProfile;
@@ -46,7 +48,7 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
 
-/// The check: a table of the shipped S-curve (the lowering onto the rest pad) at 10 ms
+/// A table of the shipped S-curve (the lowering onto the rest pad) at 10 ms
 /// gives the S-curve run's peak tip deflection within 0.5 % and its peak drive torque within 1 %.
 #[test]
 fn a_table_of_the_s_curve_reproduces_its_run() {
@@ -63,6 +65,25 @@ fn a_table_of_the_s_curve_reproduces_its_run() {
     let deflection = rel(from_table.max_tip_deflection_m, law.max_tip_deflection_m);
     let torque = rel(from_table.peak_drive_torque_n_m, law.peak_drive_torque_n_m);
     println!("lowering from a 10 ms table: tip deflection {deflection:.2e}, drive torque {torque:.2e} relative");
+    let case = "lowering.toml driven from a 10 ms table of its own S-curve";
+    common::validated_rel(
+        &common::DRIVES,
+        &format!("{case}: peak tip deflection"),
+        law.max_tip_deflection_m,
+        "the S-curve run",
+        from_table.max_tip_deflection_m,
+        "m",
+        5e-3,
+    );
+    common::validated_rel(
+        &common::DRIVES,
+        &format!("{case}: peak drive torque"),
+        law.peak_drive_torque_n_m,
+        "the S-curve run",
+        from_table.peak_drive_torque_n_m,
+        "N·m",
+        1e-2,
+    );
     assert!(deflection < 5e-3, "tip deflection {} vs {}", from_table.max_tip_deflection_m, law.max_tip_deflection_m);
     // The peak torque falls in the S-curve's deceleration, 13.7 s in, where the 10 ms table's
     // acceleration departs from the S-curve's at its jerk corners: 0.66 % measured.
@@ -105,6 +126,23 @@ fn the_spin_up_from_a_table_follows_the_closed_form_spin_up() {
         "spin-up from a table: peak tip deflection {:.6} m, largest difference {diff:.3e} m ({:.2e} of the peak)",
         peak,
         diff / peak
+    );
+    common::validated_row(
+        &common::DRIVES,
+        "spin_up.toml, the Kane–Ryan–Banerjee beam driven from a 10 ms table: tip deflection over 30 s",
+        &format!("the run under the closed-form spin-up law (peak {} m)", common::sig(peak, 4)),
+        &format!("largest difference {} m", common::sig(diff, 2)),
+        &common::relative(diff / peak),
+        "< 1e-4 of the peak",
+    );
+    common::validated_rel(
+        &common::DRIVES,
+        "spin_up.toml from its table: peak drive torque",
+        law_summary.peak_drive_torque_n_m,
+        "the closed-form law's run",
+        summary.peak_drive_torque_n_m,
+        "N·m",
+        1e-4,
     );
     assert!(peak > 0.1, "the spin-up bends the beam: {peak} m");
     assert!(diff < 1e-4 * peak, "tip deflection differs by {diff} m of {peak} m");
@@ -247,6 +285,15 @@ fn a_torque_beyond_the_joint_effort_is_flagged() {
     let mut model = shipped("spin_up").model;
     model.time.settle_s = 0.0;
     let (summary, _) = run(&model, None).unwrap();
+    common::validated_rel(
+        &common::DRIVES,
+        "spin_up.toml without settling: peak drive torque",
+        320.0,
+        "J θ̈_max = (ρAL³/3)(2ω_s/T_s) = 400 kg·m² × 0.8 rad/s²",
+        summary.peak_drive_torque_n_m,
+        "N·m",
+        0.05,
+    );
     assert!(rel(summary.peak_drive_torque_n_m, 320.0) < 0.05, "{}", summary.peak_drive_torque_n_m);
     assert!(!flagged(&summary));
     assert_eq!((summary.drive.kind.as_str(), summary.drive.effort_n_m), ("table", 1000.0));

@@ -52,7 +52,7 @@ pub struct PinCoupling {
     pub rows: [DVector<f64>; 2],
     /// The static flexibility at the pin that the elastic coordinates leave out (the truncated
     /// modes' share), hub frame, m/N: a massless spring in series with the oil column
-    /// (docs/model.md, "The cylinder's pin: residual flexibility").
+    /// (docs/model-actuators.md, "The cylinder's pin: residual flexibility").
     pub residual_flexibility_m_per_n: [[f64; 2]; 2],
 }
 

@@ -39,6 +39,7 @@ use crate::integrate::IntegrateError;
 pub use contact::{ArmContact, ContactState, PointContact};
 pub(crate) use dynamics::ArmPin;
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
+pub use linear::LinearSystem;
 pub use sim::{ArmSample, ArmSimulation, Energies};
 
 /// Standard gravity, m/s².
@@ -123,6 +124,9 @@ pub enum ArmError {
     /// An arm option outside its range.
     #[error("arm parameter `{name}` = {value} is invalid: allowed {allowed}")]
     InvalidParameter { name: String, value: f64, allowed: String },
+    /// The actuator cannot hold the arm at rest under its load at the start.
+    #[error("the actuator cannot hold the arm at rest under {load} N·m: {why}")]
+    ActuatorCannotHold { load: f64, why: String },
 }
 
 /// The reduced floating-frame arm model (notation of the module doc).

@@ -97,11 +97,7 @@ impl ArmSimulation {
             plant.arm_pin = Some(arm.pin_coupling(h.cylinder.arm_pin_m)?);
         }
         let (angle, q0, load) = static_hold(&arm, &plant)?;
-        let (own_x, own_v) = plant.holding(angle, load).map_err(|why| ArmError::InvalidParameter {
-            name: "actuator".into(),
-            value: load,
-            allowed: why,
-        })?;
+        let (own_x, own_v) = plant.holding(angle, load).map_err(|why| ArmError::ActuatorCannotHold { load, why })?;
         let n = arm.elastic_dofs();
         let coordinates = std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied());
         let x = DVector::from_iterator(1 + n + own_x.len(), coordinates);

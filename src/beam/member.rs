@@ -26,7 +26,26 @@ use serde::{Deserialize, Serialize};
 
 use super::{BeamError, ELEMENT_DOFS, Element, ModalBasis, NODE_DOFS, Segment, shape_rows};
 
-/// A uniform member along the arm's axis, clamped to the arm at one or more stations.
+/// A stretch of a member with a section of its own: a pipe's coupling or tool joint, short and
+/// stiff, carrying its mass where it lies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MemberPiece {
+    /// Its start, measured from the member's start, m.
+    pub from_m: f64,
+    /// Its section; `length_m` is the piece's.
+    pub segment: Segment,
+}
+
+impl MemberPiece {
+    /// Its end, measured from the member's start, m.
+    pub fn to_m(&self) -> f64 {
+        self.from_m + self.segment.length_m
+    }
+}
+
+/// A member along the arm's axis, clamped to the arm at one or more stations: uniform but for
+/// its pieces.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MemberSpec {
@@ -36,6 +55,9 @@ pub struct MemberSpec {
     pub start_m: f64,
     /// The member's section and length.
     pub segment: Segment,
+    /// Stretches with a section of their own, ascending and apart (none: uniform).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pieces: Vec<MemberPiece>,
     /// Hub-frame x of each clamp (a station on the arm and on the member), m, ascending.
     pub clamps_m: Vec<f64>,
     /// Finite elements along the member (each piece between clamps and ends gets at least one).
@@ -80,6 +102,15 @@ impl MemberSpec {
         if self.clamps_m.windows(2).any(|w| w[1] - w[0] <= tol) {
             return Err(BeamError::invalid("member.clamps_m", self.clamps_m[0], "distinct stations, ascending"));
         }
+        let mut last_end = 0.0;
+        for piece in &self.pieces {
+            piece.segment.validate()?;
+            if !(piece.from_m >= last_end - tol && piece.to_m() <= self.segment.length_m + tol) {
+                let allowed = format!("pieces ascending and apart within 0 ..= {} m", self.segment.length_m);
+                return Err(BeamError::invalid("member.pieces.from_m", piece.from_m, allowed));
+            }
+            last_end = piece.to_m();
+        }
         Ok(())
     }
 
@@ -93,6 +124,7 @@ impl MemberSpec {
     fn node_positions(&self) -> Vec<f64> {
         let mut breaks = vec![self.start_m, self.end_m()];
         breaks.extend(&self.clamps_m);
+        breaks.extend(self.pieces.iter().flat_map(|p| [self.start_m + p.from_m, self.start_m + p.to_m()]));
         super::spread_nodes(breaks, self.elements, self.segment.length_m)
     }
 
@@ -111,13 +143,35 @@ impl MemberSpec {
         (0..self.clamps_m.len()).find(|&c| x <= self.region(c).1).unwrap_or(self.clamps_m.len() - 1)
     }
 
+    /// The section at hub-frame `x` (a piece's where one lies, else the member's).
+    pub fn section_at(&self, x: f64) -> &Segment {
+        let along = x - self.start_m;
+        self.pieces.iter().find(|p| (p.from_m..=p.to_m()).contains(&along)).map_or(&self.segment, |p| &p.segment)
+    }
+
+    /// Mass (kg) and first moment about the hub (kg·m) of the member between hub-frame `a` and
+    /// `b` (a <= b).
+    fn mass_between(&self, a: f64, b: f64) -> (f64, f64) {
+        let mu = self.segment.mass_per_length_kg_m;
+        let mut mass = (mu * (b - a), mu * (b * b - a * a) / 2.0);
+        for piece in &self.pieces {
+            let (lo, hi) = ((self.start_m + piece.from_m).max(a), (self.start_m + piece.to_m()).min(b));
+            if hi > lo {
+                let extra = piece.segment.mass_per_length_kg_m - mu;
+                mass.0 += extra * (hi - lo);
+                mass.1 += extra * (hi * hi - lo * lo) / 2.0;
+            }
+        }
+        mass
+    }
+
     /// Mass (kg) and first moment about the hub (kg·m) that reach the arm at each clamp.
     pub(super) fn clamp_loads(&self) -> Vec<(f64, f64, f64)> {
-        let mu = self.segment.mass_per_length_kg_m;
         (0..self.clamps_m.len())
             .map(|c| {
                 let (lo, hi) = self.region(c);
-                (self.clamps_m[c], mu * (hi - lo), mu * (hi * hi - lo * lo) / 2.0)
+                let (mass, first_moment) = self.mass_between(lo, hi);
+                (self.clamps_m[c], mass, first_moment)
             })
             .collect()
     }
@@ -127,13 +181,13 @@ impl MemberSpec {
     /// region's outer end hangs outward through `x`), negative on the hub side of a clamp (the
     /// material between the region's inner end and `x` pushes outward through it).
     pub(super) fn axial_load(&self, x: f64) -> (f64, f64) {
-        let mu = self.segment.mass_per_length_kg_m;
         let c = self.clamp_of(x);
         let (lo, hi) = self.region(c);
         if x >= self.clamps_m[c] {
-            (mu * (hi - x), mu * (hi * hi - x * x) / 2.0)
+            self.mass_between(x, hi)
         } else {
-            (-mu * (x - lo), -mu * (x * x - lo * lo) / 2.0)
+            let (mass, first_moment) = self.mass_between(lo, x);
+            (-mass, -first_moment)
         }
     }
 }
@@ -180,15 +234,17 @@ impl MemberModel {
                 }
             })
             .collect();
-        let s = spec.segment;
         let elements = nodes_x_m
             .windows(2)
-            .map(|w| Element {
-                x0_m: w[0],
-                length_m: w[1] - w[0],
-                axial_rigidity_n: s.axial_rigidity_n,
-                bending_rigidity_n_m2: s.bending_rigidity_n_m2,
-                mass_per_length_kg_m: s.mass_per_length_kg_m,
+            .map(|w| {
+                let s = spec.section_at(0.5 * (w[0] + w[1]));
+                Element {
+                    x0_m: w[0],
+                    length_m: w[1] - w[0],
+                    axial_rigidity_n: s.axial_rigidity_n,
+                    bending_rigidity_n_m2: s.bending_rigidity_n_m2,
+                    mass_per_length_kg_m: s.mass_per_length_kg_m,
+                }
             })
             .collect();
         let element_dofs = (0..nodes_x_m.len() - 1)

@@ -19,7 +19,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 pub use element::{ELEMENT_DOFS, GAUSS_4, ShapeRows, shape_rows};
-pub use member::{MemberModel, MemberSpec};
+pub use member::{MemberModel, MemberPiece, MemberSpec};
 pub use modes::ModalBasis;
 pub(crate) use modes::solve_generalized;
 pub use section::{Material, SectionProperties, SectionShape};

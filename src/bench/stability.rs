@@ -317,9 +317,9 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
     let models = if quick { vec![auto] } else { dedup(vec![auto, Fidelity::Modal { modes: 8 }]) };
     let mut out = Vec::new();
     // Both sizes are in the compiled-in catalogue (robot::pipes' tests).
-    let one_joint = |size: &str| PipeString::from_spec(&StringSpec { size: size.into(), length_m: None }).ok();
+    let one_joint = |size: &str| PipeString::from_spec(&StringSpec::of_size(size)).ok();
     for pipe in ["2-7/8", "4-1/2"].into_iter().filter_map(one_joint) {
-        let size = pipe.pipe.size;
+        let size = pipe.pipe.size.clone();
         let mut s = model.clone();
         s.integrator = IntegratorKind::default();
         if let Some(held) = s.payload.string_mut() {
@@ -343,7 +343,7 @@ fn clamp_sweep(model: &Model, auto: Fidelity, quick: bool) -> Result<Vec<ClampRu
                     Err(SceneError::Diverged { t_s, .. }) => ClampOutcome::Diverged { t_s },
                     Err(e) => return Err(e),
                 };
-                out.push(ClampRun { size: size.into(), string_kg, string, model, step_s: f * h0, outcome });
+                out.push(ClampRun { size: size.clone(), string_kg, string, model, step_s: f * h0, outcome });
             }
         }
     }

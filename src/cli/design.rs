@@ -14,11 +14,7 @@ const DEFAULT_RESIDUAL_LIMIT_M: f64 = 1e-3;
 
 /// `pipearm design` arguments.
 #[derive(clap::Args)]
-#[command(after_help = "Examples:
-  pipearm design scenarios/default.toml --minimize drive.duration_s --over drive.duration_s=8..25 \\
-      --limit residual.amplitude_m<=0.001 --limit peak_force_n<=3000 \\
-      --spread dampeners.0.gap_m=uniform:0..0.0004 --samples 32
-  pipearm design scenarios/default.toml --table --limit residual.amplitude_m<=0.001 --nominal")]
+#[command(after_help = super::help::DESIGN)]
 pub struct DesignArgs {
     /// Scenario file.
     scenario: PathBuf,

@@ -29,9 +29,38 @@ pub const MODES: &str = "Examples:
 
 pub const SWEEP: &str = "Examples:
   pipearm sweep scenarios/default.toml --vary payload.size=2-3/8,2-7/8,4-1/2
-  pipearm sweep scenarios/default.toml --vary 'dampeners[0].gap_m=0..0.0004:0.0001' --shard 0/4
-  pipearm sweep merge recordings/sweep";
+  pipearm sweep scenarios/default.toml --vary 'dampeners[0].gap_m=0..0.0004:0.0001' --out recordings/gaps --shard 0/2
+  pipearm sweep scenarios/default.toml --vary 'dampeners[0].gap_m=0..0.0004:0.0001' --out recordings/gaps --shard 1/2
+  pipearm sweep merge recordings/gaps                  when every shard is done";
 
 pub const ENVELOPE: &str = "Examples:
   pipearm envelope scenarios/default.toml --spread 'dampeners[0].gap_m=uniform:0.0001..0.0003' --samples 64
   pipearm envelope merge recordings/envelope";
+
+pub const DESIGN: &str = "Examples:
+  pipearm design scenarios/default.toml --minimize drive.duration_s --over drive.duration_s=8..25 \\
+      --limit 'residual.amplitude_m<=0.001' --limit 'peak_force_n<=3000' \\
+      --spread 'dampeners[0].gap_m=uniform:0..0.0004' --samples 8 --budget 12
+  pipearm design scenarios/default.toml --table --limit 'residual.amplitude_m<=0.001' --nominal";
+
+pub const COMPARE: &str = "Examples:
+  pipearm compare scenarios/default.toml --measured measurements/rig.csv --shift
+  pipearm compare scenarios/default.toml --measured measurements/rig.csv --model 'modal(2)' --out /tmp/cmp";
+
+pub const FIT: &str = "Examples:
+  pipearm fit scenarios/default.toml --measured measurements/rig.csv --params 'dampeners[0].law.stiffness' --shift
+  pipearm fit scenarios/default.toml --measured measurements/rig.csv \\
+      --params 'dampeners[0].law.stiffness,arm.damping_ratios[0]' --step 0.001 --shift";
+
+pub const PIPES: &str = "Examples:
+  pipearm pipes                                    the whole catalogue
+  pipearm pipes 9-5/8                              every 9-5/8 in row
+  pipearm pipes drill-pipe 5                       5 in drill pipe";
+
+pub const CAPACITY: &str = "Examples:
+  pipearm capacity                                 the default scenario's machine and string
+  pipearm capacity scenarios/servo.toml --step-deg 15";
+pub const DRAW: &str = "Examples:
+  pipearm draw                                     the default scenario: recordings/default.machine.svg and .png
+  pipearm draw scenarios/string_strike.toml        the lift with its well-centre guide
+  pipearm draw robots/pipe_arm.urdf --out recordings/pipe_arm.svg   the robot alone";

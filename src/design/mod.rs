@@ -23,7 +23,7 @@ use crate::envelope::{EnvelopeError, cases::check_spreads};
 use crate::robot::Robot;
 use crate::run::run;
 use crate::scenario::{Scenario, ScenarioError};
-use crate::sweep::plan::{base_document, get_number, set_key, spec_of};
+use crate::sweep::plan::{base_document, get_number, not_a_number, set_key, spec_of};
 use crate::sweep::row::Row;
 use search::{Evaluation, Outcome, Problem, minimize};
 
@@ -178,13 +178,19 @@ impl Evaluator {
     }
 
     /// Pins the base document's shaper to the nominal arm's tuning (see
-    /// [`crate::envelope::cases::nominal_shaper_hz`]), unless it is spread.
+    /// [`crate::envelope::cases::nominal_shaper_tuning`]), unless its frequencies are drawn.
     pub fn pin_shaper(&mut self) -> Result<(), DesignError> {
-        if self.draws.iter().flatten().any(|(k, _)| k == "drive.shaper_hz") {
+        let drawn = |key: &str| self.draws.iter().flatten().any(|(k, _)| k == key);
+        if drawn("drive.shaper_hz") {
             return Ok(());
         }
-        if let Some(hz) = crate::envelope::cases::nominal_shaper_hz(&self.path, &self.document)? {
-            self.set_base("drive.shaper_hz", toml::Value::Float(hz))?;
+        let pinned: Vec<(String, toml::Value)> =
+            crate::envelope::cases::nominal_shaper_tuning(&self.path, &self.document)?
+                .into_iter()
+                .filter(|(key, _)| !drawn(key))
+                .collect();
+        for (key, value) in pinned {
+            self.set_base(&key, value)?;
         }
         Ok(())
     }
@@ -192,6 +198,11 @@ impl Evaluator {
     /// The base document's number at `key`.
     pub fn base_number(&self, key: &str) -> Option<f64> {
         get_number(&self.document, key)
+    }
+
+    /// Why `key` is no number of the base document, with the numeric keys near it.
+    pub fn not_a_number(&self, key: &str) -> String {
+        not_a_number(&self.document, key, &self.path)
     }
 
     /// Runs per candidate.
@@ -421,11 +432,7 @@ pub fn design(request: &Request) -> Result<Design, DesignError> {
     )?;
     for over in &request.over {
         if evaluator.base_number(&over.key).is_none() && !over.key.starts_with("drive.") {
-            return Err(DesignError::Argument(format!(
-                "--over `{}`: not a number in {}; allowed numeric scenario keys",
-                over.key,
-                request.scenario.display()
-            )));
+            return Err(DesignError::Argument(format!("--over `{}`: {}", over.key, evaluator.not_a_number(&over.key))));
         }
     }
     evaluator.pin_shaper()?;

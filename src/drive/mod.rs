@@ -70,9 +70,9 @@ mod test_support;
 mod trapezoid;
 mod validate;
 
-pub use profile::MotionProfile;
+pub use profile::{MotionLaw, MotionProfile};
 pub use s_curve::SCurveLimit;
-pub use shaper::{EI_TOLERANCE, Shaper, residual_vibration};
+pub use shaper::{EI_TOLERANCE, Shaper, ShaperMode, convolve, residual_vibration};
 pub use state::DriveState;
 pub use table::MIN_TABLE_SAMPLES;
 pub use table_file::TableError;

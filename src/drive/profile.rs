@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 
 use super::s_curve::{SCurveLimit, s_curve_shape};
-use super::shaper::Shaper;
+use super::shaper::{Shaper, ShaperMode};
 use super::state::{DriveState, Piece, Segment, chain};
 use super::table;
 use super::trapezoid::{TrapezoidLimit, trapezoid_shape};
@@ -35,8 +35,8 @@ pub(super) enum Kind {
 pub(super) struct Shaping {
     pub(super) base: MotionProfile,
     pub(super) shaper: Shaper,
-    pub(super) frequency_hz: f64,
-    pub(super) damping_ratio: f64,
+    /// The modes it is tuned to, one or more.
+    pub(super) modes: Vec<ShaperMode>,
     /// `(t_i s, A_i)`, first at 0, amplitudes summing to 1.
     pub(super) impulses: Vec<(f64, f64)>,
 }
@@ -253,19 +253,22 @@ impl MotionProfile {
         self.peak_jerk_rad_s3
     }
 
-    /// Profile name: `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`,
-    /// `"spin-up"` or `"table"`. A shaped profile is named by its base (its shaper by
-    /// [`Self::shaper`]).
-    pub fn name(&self) -> &'static str {
+    /// The motion law: a shaped profile's is its base's (its shaper is [`Self::shaper`]).
+    pub fn law(&self) -> MotionLaw {
         match &self.kind {
-            Kind::Shaped(shaping) => shaping.base.name(),
-            Kind::Uniform => "uniform",
-            Kind::Trapezoidal => "trapezoidal",
-            Kind::SCurve => "s-curve",
-            Kind::Hold => "hold",
-            Kind::SpinUp { .. } => "spin-up",
-            Kind::Table { .. } => "table",
+            Kind::Shaped(shaping) => shaping.base.law(),
+            Kind::Uniform => MotionLaw::Uniform,
+            Kind::Trapezoidal => MotionLaw::Trapezoidal,
+            Kind::SCurve => MotionLaw::SCurve,
+            Kind::Hold => MotionLaw::Hold,
+            Kind::SpinUp { .. } => MotionLaw::SpinUp,
+            Kind::Table { .. } => MotionLaw::Table,
         }
+    }
+
+    /// The motion law's name as the scenario and the summary spell it ([`MotionLaw::name`]).
+    pub fn name(&self) -> &'static str {
+        self.law().name()
     }
 
     /// Builds a symmetric profile and checks that its first half really
@@ -307,6 +310,31 @@ impl MotionProfile {
                 self.duration_s,
                 "a value for which the requested limits give a numerically representable profile",
             ))
+        }
+    }
+}
+
+/// The law a hub profile follows, whatever its parameters: what callers branch on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MotionLaw {
+    Uniform,
+    Trapezoidal,
+    SCurve,
+    Hold,
+    SpinUp,
+    Table,
+}
+
+impl MotionLaw {
+    /// `"uniform"`, `"trapezoidal"`, `"s-curve"`, `"hold"`, `"spin-up"` or `"table"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            MotionLaw::Uniform => "uniform",
+            MotionLaw::Trapezoidal => "trapezoidal",
+            MotionLaw::SCurve => "s-curve",
+            MotionLaw::Hold => "hold",
+            MotionLaw::SpinUp => "spin-up",
+            MotionLaw::Table => "table",
         }
     }
 }

@@ -9,7 +9,7 @@
 //! unless its impulses are.
 
 use super::profile::{Kind, MotionProfile, Shaping};
-use super::shaper::Shaper;
+use super::shaper::{Shaper, ShaperMode};
 use super::state::{DriveState, Segment};
 use super::table;
 use super::validate::{DriveError, invalid, require_positive};
@@ -25,24 +25,39 @@ impl MotionProfile {
     /// continuous, its acceleration steps at each `t_i + b` (b a breakpoint of the base).
     ///
     /// # Errors
-    /// [`DriveError::InvalidParameter`] for a base that is not uniform, trapezoidal or s-curve
-    /// (`base`), a frequency that is not finite and > 0 (`frequency_hz`), or a damping ratio
-    /// outside `0 ≤ ζ < 1` (`damping_ratio`).
+    /// As [`Self::shaped_for`].
     pub fn shaped(
         base: MotionProfile,
         shaper: Shaper,
         frequency_hz: f64,
         damping_ratio: f64,
     ) -> Result<Self, DriveError> {
+        Self::shaped_for(base, shaper, &[ShaperMode { frequency_hz, damping_ratio }])
+    }
+
+    /// `base` convolved with `shaper` tuned to every one of `modes` (the convolution of one
+    /// shaper per mode, [`Shaper::impulses_for`]): same start and end angles, duration the
+    /// base's plus the shapers' lengths ([`Shaper::length_for_s`]).
+    ///
+    /// # Errors
+    /// [`DriveError::InvalidParameter`] for a base that is not uniform, trapezoidal or s-curve
+    /// (`base`), no mode (`modes`), a frequency that is not finite and > 0 (`frequency_hz`), or a
+    /// damping ratio outside `0 ≤ ζ < 1` (`damping_ratio`).
+    pub fn shaped_for(base: MotionProfile, shaper: Shaper, modes: &[ShaperMode]) -> Result<Self, DriveError> {
         if !matches!(base.kind, Kind::Uniform | Kind::Trapezoidal | Kind::SCurve) {
             return Err(invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move"));
         }
-        let frequency_hz = require_positive("frequency_hz", frequency_hz)?;
-        if !(0.0..1.0).contains(&damping_ratio) {
-            return Err(invalid("damping_ratio", damping_ratio, "0 <= damping_ratio < 1"));
+        if modes.is_empty() {
+            return Err(invalid("modes", 0.0, "at least one mode to tune to"));
         }
-        let impulses = shaper.impulses(frequency_hz, damping_ratio);
-        let duration_s = base.duration_s + shaper.length_s(frequency_hz, damping_ratio);
+        for mode in modes {
+            require_positive("frequency_hz", mode.frequency_hz)?;
+            if !(0.0..1.0).contains(&mode.damping_ratio) {
+                return Err(invalid("damping_ratio", mode.damping_ratio, "0 <= damping_ratio < 1"));
+            }
+        }
+        let impulses = shaper.impulses_for(modes);
+        let duration_s = base.duration_s + impulses.last().map_or(0.0, |i| i.0);
         let segments = convolved_segments(&base, &impulses, duration_s);
         let (rate, accel, jerk) = table::peaks(&segments, duration_s, 0.0);
         // A trapezoid's acceleration steps: its jerk is impulsive, and so is every shifted copy's.
@@ -55,7 +70,7 @@ impl MotionProfile {
             peak_accel_rad_s2: accel,
             peak_jerk_rad_s3: jerk,
             segments,
-            kind: Kind::Shaped(Box::new(Shaping { base, shaper, frequency_hz, damping_ratio, impulses })),
+            kind: Kind::Shaped(Box::new(Shaping { base, shaper, modes: modes.to_vec(), impulses })),
         })
     }
 
@@ -64,14 +79,9 @@ impl MotionProfile {
         self.shaping().map(|s| s.shaper)
     }
 
-    /// The natural frequency a shaped profile's shaper is tuned to, Hz.
-    pub fn shaper_hz(&self) -> Option<f64> {
-        self.shaping().map(|s| s.frequency_hz)
-    }
-
-    /// The damping ratio a shaped profile's shaper is tuned to.
-    pub fn shaper_damping_ratio(&self) -> Option<f64> {
-        self.shaping().map(|s| s.damping_ratio)
+    /// The modes a shaped profile's shaper is tuned to; empty for every other profile.
+    pub fn shaper_modes(&self) -> &[ShaperMode] {
+        self.shaping().map_or(&[], |s| &s.modes)
     }
 
     /// A shaped profile's impulses `(t_i s, A_i)`; empty for every other profile.
@@ -153,7 +163,7 @@ fn convolved_segments(base: &MotionProfile, impulses: &[(f64, f64)], duration_s:
 #[cfg(test)]
 mod tests {
     use crate::drive::test_support::{assert_close, check_derivatives, max_abs};
-    use crate::drive::{MotionProfile, SCurveLimit, Shaper, TrapezoidLimit};
+    use crate::drive::{MotionLaw, MotionProfile, SCurveLimit, Shaper, TrapezoidLimit};
 
     const F: f64 = 0.7;
     const ZETA: f64 = 0.02;
@@ -192,7 +202,7 @@ mod tests {
                 }
                 assert_eq!(p.name(), base.name());
                 assert_eq!(p.shaper(), Some(shaper));
-                assert_eq!(p.shaper_hz(), Some(F));
+                assert_eq!(p.shaper_modes(), [crate::drive::ShaperMode { frequency_hz: F, damping_ratio: ZETA }]);
             }
         }
     }
@@ -226,10 +236,10 @@ mod tests {
             assert!(p.peak_rate_rad_s() < base.peak_rate_rad_s() * (1.0 + 1e-12), "shaping never raises the peak rate");
             let dense_accel = max_abs(&p, t_end, |s| s.accel_rad_s2);
             assert_close(p.peak_accel_rad_s2(), dense_accel, 1e-6 * dense_accel.max(1e-9), "peak accel");
-            if base.name() == "s-curve" {
+            if base.law() == MotionLaw::SCurve {
                 let dense_jerk = max_abs(&p, t_end, |s| s.jerk_rad_s3);
                 assert_close(p.peak_jerk_rad_s3(), dense_jerk, 1e-9 * dense_jerk, "peak jerk");
-            } else if base.name() == "trapezoidal" {
+            } else if base.law() == MotionLaw::Trapezoidal {
                 assert_eq!(p.peak_jerk_rad_s3(), f64::INFINITY);
             }
         }
@@ -265,6 +275,7 @@ mod tests {
         assert_eq!(name(MotionProfile::shaped(base.clone(), Shaper::Zv, f64::NAN, 0.0)), "frequency_hz");
         assert_eq!(name(MotionProfile::shaped(base.clone(), Shaper::Zv, 1.0, 1.0)), "damping_ratio");
         assert_eq!(name(MotionProfile::shaped(MotionProfile::hold(0.3), Shaper::Zv, 1.0, 0.0)), "base");
+        assert_eq!(name(MotionProfile::shaped_for(base.clone(), Shaper::Zv, &[])), "modes");
         let shaped = MotionProfile::shaped(base, Shaper::Zv, 1.0, 0.0).unwrap();
         assert_eq!(name(MotionProfile::shaped(shaped, Shaper::Zv, 1.0, 0.0)), "base");
     }

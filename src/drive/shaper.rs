@@ -6,6 +6,12 @@
 //! shapers, stay small around it). The amplitudes are positive and sum to 1, so a shaped motion
 //! reaches the same end angle; it lasts longer by the shaper's length.
 //!
+//! Several modes are cancelled by the convolution of one shaper per mode
+//! ([`Shaper::impulses_for`]): the residual vibration of a convolution is the product of its
+//! factors' at every frequency (their sums of rotating vectors multiply), so it vanishes wherever
+//! one factor's does (Singer and Seering 1990; J. M. Hyde and W. P. Seering, "Using input command
+//! pre-shaping to suppress multiple mode vibration", Proc. IEEE ICRA 1991, 2604–2609).
+//!
 //! Sources: N. C. Singer and W. P. Seering, "Preshaping command inputs to reduce system
 //! vibration", ASME J. Dyn. Sys. Meas. Control 112 (1990) 76–82 (ZV, ZVD and the residual
 //! vibration `V(ω, ζ)`); W. Singhose, W. Seering and N. Singer, "Residual vibration reduction
@@ -20,7 +26,17 @@ use serde::{Deserialize, Serialize};
 /// step's (Singhose et al. 1994 use 5 %).
 pub const EI_TOLERANCE: f64 = 0.05;
 
-/// An input shaper, tuned to one mode by [`Shaper::impulses`].
+/// A mode a shaper is tuned to: its natural frequency, Hz (> 0), and damping ratio (0 ≤ ζ < 1).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct ShaperMode {
+    /// Natural frequency, Hz.
+    pub frequency_hz: f64,
+    /// Damping ratio.
+    pub damping_ratio: f64,
+}
+
+/// An input shaper, tuned to one mode by [`Shaper::impulses`], to several by
+/// [`Shaper::impulses_for`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Shaper {
@@ -87,6 +103,42 @@ impl Shaper {
     pub fn length_s(self, frequency_hz: f64, damping_ratio: f64) -> f64 {
         self.impulses(frequency_hz, damping_ratio).last().map_or(0.0, |i| i.0)
     }
+
+    /// The impulses cancelling every one of `modes`: the convolution of this shaper tuned to each
+    /// ([`convolve`]). First at 0, amplitudes positive and summing to 1; as long as the modes'
+    /// shapers together. A single impulse at 0 for no mode.
+    pub fn impulses_for(self, modes: &[ShaperMode]) -> Vec<(f64, f64)> {
+        modes.iter().fold(vec![(0.0, 1.0)], |product, mode| {
+            convolve(&product, &self.impulses(mode.frequency_hz, mode.damping_ratio))
+        })
+    }
+
+    /// How long the shaper tuned to every one of `modes` lengthens a motion, s: the sum of its
+    /// lengths at each.
+    pub fn length_for_s(self, modes: &[ShaperMode]) -> f64 {
+        modes.iter().map(|m| self.length_s(m.frequency_hz, m.damping_ratio)).sum()
+    }
+}
+
+/// Impulses closer than this fraction of the sequence's length are one.
+const COINCIDENT_FRACTION: f64 = 1e-9;
+
+/// The convolution of two impulse sequences `(t s, A)`: an impulse at `t_i + s_j` of amplitude
+/// `A_i B_j` for every pair, coincident ones merged (amplitudes summed), in time order. Amplitudes
+/// summing to 1 in each give a product summing to 1; its residual vibration at any mode is the
+/// product of the two's ([`residual_vibration`]).
+pub fn convolve(a: &[(f64, f64)], b: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut pairs: Vec<(f64, f64)> = a.iter().flat_map(|&(t, x)| b.iter().map(move |&(s, y)| (t + s, x * y))).collect();
+    pairs.sort_by(|p, q| p.0.total_cmp(&q.0));
+    let length = pairs.last().map_or(0.0, |p| p.0);
+    let mut merged: Vec<(f64, f64)> = Vec::with_capacity(pairs.len());
+    for (t, amplitude) in pairs {
+        match merged.last_mut() {
+            Some(last) if t - last.0 <= COINCIDENT_FRACTION * length => last.1 += amplitude,
+            _ => merged.push((t, amplitude)),
+        }
+    }
+    merged
 }
 
 /// Residual vibration left by the impulses `(t_i s, A_i)` on a second-order mode of natural
@@ -180,6 +232,50 @@ mod tests {
             close(residual_vibration(&Shaper::Zvd.impulses(1.0, 0.0), r, 0.0), c * c, 1e-13, "ZVD");
         }
         close(residual_vibration(&[(0.0, 1.0)], 1.0, 0.1), 1.0, 1e-15, "single impulse");
+    }
+
+    /// Two modes: ZVD per mode convolved leaves nothing at either design frequency, its residual
+    /// is the product of the factors' everywhere, and it keeps sum 1 and positive amplitudes.
+    #[test]
+    fn convolved_shapers_cancel_every_mode() {
+        let modes = [
+            ShaperMode { frequency_hz: 2.85, damping_ratio: 0.01 },
+            ShaperMode { frequency_hz: 5.1, damping_ratio: 0.03 },
+        ];
+        for shaper in [Shaper::Zv, Shaper::Zvd] {
+            let product = shaper.impulses_for(&modes);
+            close(product.iter().map(|i| i.1).sum(), 1.0, 1e-14, "sum");
+            assert!(product.iter().all(|i| i.1 > 0.0) && product[0].0 == 0.0);
+            close(product.last().unwrap().0, shaper.length_for_s(&modes), 1e-14, "length");
+            for m in modes {
+                let v = residual_vibration(&product, m.frequency_hz, m.damping_ratio);
+                assert!(v < 1e-13, "{shaper:?} at {} Hz: {v}", m.frequency_hz);
+            }
+            for (f, zeta) in [(1.0, 0.0), (3.7, 0.02), (9.0, 0.05)] {
+                let each: f64 = modes
+                    .iter()
+                    .map(|m| residual_vibration(&shaper.impulses(m.frequency_hz, m.damping_ratio), f, zeta))
+                    .product();
+                close(residual_vibration(&product, f, zeta), each, 1e-13, "product of the factors'");
+            }
+        }
+    }
+
+    /// Modes an octave apart: ZVD's impulses at 0, T/4, T/2 (2f) and 0, T/2, T (f) sum to
+    /// coincident times, merged; undamped, the seven impulses at kT/4 are [1, 2, 3, 4, 3, 2, 1]/16.
+    #[test]
+    fn coincident_impulses_are_merged() {
+        let modes = [
+            ShaperMode { frequency_hz: 1.0, damping_ratio: 0.0 },
+            ShaperMode { frequency_hz: 2.0, damping_ratio: 0.0 },
+        ];
+        let product = Shaper::Zvd.impulses_for(&modes);
+        assert_eq!(product.len(), 7, "{product:?}");
+        for (k, (t, a)) in product.iter().enumerate() {
+            close(*t, 0.25 * k as f64, 1e-14, "time");
+            close(*a, [1.0, 2.0, 3.0, 4.0, 3.0, 2.0, 1.0][k] / 16.0, 1e-14, "amplitude");
+        }
+        assert_eq!(Shaper::Zvd.impulses_for(&[]), vec![(0.0, 1.0)]);
     }
 
     #[test]

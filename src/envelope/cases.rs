@@ -12,7 +12,7 @@ use super::dist::Spread;
 use super::sample::{latin_hypercube, saltelli};
 use crate::scenario::Scenario;
 use crate::sweep::Vary;
-use crate::sweep::plan::{base_document, get_number, set_key, spec_of};
+use crate::sweep::plan::{base_document, dotted_key, get_number, not_a_number, set_key, spec_of};
 
 /// Fewest Saltelli base rows for which the envelope estimates Sobol indices by default: below it
 /// their bootstrap intervals are wider than the indices of a typical ranking.
@@ -178,7 +178,8 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
         return Err(EnvelopeError::Argument("no --spread given: allowed one or more KEY=DIST".into()));
     }
     for (i, s) in spreads.iter().enumerate() {
-        if spreads[..i].iter().any(|t| t.key == s.key) || per.is_some_and(|p| p.key == s.key) {
+        let same = |key: &str| dotted_key(key) == dotted_key(&s.key);
+        if spreads[..i].iter().any(|t| same(&t.key)) || per.is_some_and(|p| same(&p.key)) {
             return Err(EnvelopeError::Argument(format!("--spread `{s}`: `{}` is spread or grouped twice", s.key)));
         }
     }
@@ -187,11 +188,7 @@ pub fn check_spreads(path: &Path, spreads: &[Spread], per: Option<&Vary>) -> Res
         if get_number(&document, &spread.key).is_none() {
             return Err(EnvelopeError::Spread {
                 spread: spread.to_string(),
-                message: format!(
-                    "`{}` is not a number in {}: allowed numeric scenario keys",
-                    spread.key,
-                    path.display()
-                ),
+                message: not_a_number(&document, &spread.key, path),
             });
         }
         check_support(path, &document, spread)?;
@@ -220,17 +217,25 @@ fn check_support(path: &Path, document: &toml::Value, spread: &Spread) -> Result
     Ok(())
 }
 
-/// The base scenario's shaper tuning, Hz, where `document`'s drive has a shaper and no
-/// `shaper_hz`. Left to itself each run would tune its shaper to its own arm: over spread keys
-/// that move the arm's mode (its damping, the payload, a gap that changes nothing but the run),
-/// every draw would be shaped with a knowledge of itself that a real drive does not have. An
-/// envelope and a design therefore pin the tuning to the nominal arm's.
-pub fn nominal_shaper_hz(path: &Path, document: &toml::Value) -> Result<Option<f64>, EnvelopeError> {
+/// The base scenario's shaper tuning, where `document`'s drive has a shaper and no `shaper_hz`:
+/// the keys `drive.shaper_hz` and `drive.shaper_damping_ratio` set to the modes it was tuned to
+/// (empty otherwise). Left to itself each run would tune its shaper to its own arm: over spread
+/// keys that move the arm's modes (its damping, the payload, a gap that changes nothing but the
+/// run), every draw would be shaped with a knowledge of itself that a real drive does not have.
+/// An envelope and a design therefore pin the tuning to the nominal arm's.
+pub fn nominal_shaper_tuning(path: &Path, document: &toml::Value) -> Result<Vec<(String, toml::Value)>, EnvelopeError> {
     let drive = document.get("drive");
     let shaped = drive.and_then(|d| d.get("shaper")).is_some() && drive.and_then(|d| d.get("shaper_hz")).is_none();
     if !shaped {
-        return Ok(None);
+        return Ok(Vec::new());
     }
     let scenario = Scenario::from_spec(path, spec_of(path, document.clone())?)?;
-    Ok(scenario.model.drive.motion.shaper_hz())
+    let modes = scenario.model.drive.motion.shaper_modes();
+    let list = |pick: fn(&crate::drive::ShaperMode) -> f64| {
+        toml::Value::Array(modes.iter().map(|m| toml::Value::Float(pick(m))).collect())
+    };
+    Ok(vec![
+        ("drive.shaper_hz".to_string(), list(|m| m.frequency_hz)),
+        ("drive.shaper_damping_ratio".to_string(), list(|m| m.damping_ratio)),
+    ])
 }

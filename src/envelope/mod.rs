@@ -156,14 +156,15 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
 }
 
 /// The keys every run shares beyond the base scenario: the nominal arm's shaper tuning, unless
-/// it is spread.
+/// its frequencies are spread (a spread damping ratio is left to the spread).
 fn pinned_keys(path: &Path, spreads: &[Spread]) -> Result<Vec<(String, toml::Value)>, EnvelopeError> {
     if spreads.iter().any(|s| s.key == "drive.shaper_hz") {
         return Ok(Vec::new());
     }
     let document = crate::sweep::plan::read_document(path)?;
-    let hz = cases::nominal_shaper_hz(path, &document)?;
-    Ok(hz.map(|hz| ("drive.shaper_hz".to_string(), toml::Value::Float(hz))).into_iter().collect())
+    let mut pinned = cases::nominal_shaper_tuning(path, &document)?;
+    pinned.retain(|(key, _)| !spreads.iter().any(|s| s.key == *key));
+    Ok(pinned)
 }
 
 /// The file of an envelope's sampling, beside the sweep's `plan.json`.

@@ -28,7 +28,7 @@ use crate::robot::Robot;
 use crate::run::{RunSummary, Series, run};
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use crate::scene::SceneError;
-use crate::sweep::plan::{explicit_damping_ratios, get_number, set_key};
+use crate::sweep::plan::{explicit_damping_ratios, get_number, not_a_number, set_key};
 
 /// Errors of a fit; each names what it concerns.
 #[derive(Debug, thiserror::Error)]
@@ -151,10 +151,8 @@ impl Problem {
         let parameters = keys
             .iter()
             .map(|key| {
-                let initial = get_number(&document, key).ok_or_else(|| FitError::Key {
-                    key: key.clone(),
-                    message: "not a number in the scenario".into(),
-                })?;
+                let initial = get_number(&document, key)
+                    .ok_or_else(|| FitError::Key { key: key.clone(), message: not_a_number(&document, key, path) })?;
                 let bounds = bounds_of(key, initial).map_err(|message| FitError::Key { key: key.clone(), message })?;
                 Ok(Parameter { key: key.clone(), initial, bounds })
             })

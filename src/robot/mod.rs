@@ -6,14 +6,17 @@
 //! fixed or prismatic joints. Each carried link becomes a concentrated mass at the arm station
 //! of its centre of mass; its offset across the arm and out of the plane is kept for geometry only.
 
-mod pipes;
+pub mod pipes;
 mod urdf;
 
 use std::path::PathBuf;
 
 use thiserror::Error;
 
-pub use pipes::{PIPE_CATALOGUE, PipeSize, PipeString, StringSpec, pipe_size};
+pub use pipes::{
+    ConnectionPiece, CustomPipeSpec, Joints, PIPE_CATALOGUE, Pipe, PipeSize, PipeString, Product, Range, StringSpec,
+    find_row, pipe_size,
+};
 pub use urdf::load_robot;
 
 use crate::beam::{BeamError, BeamSpec, ConcentratedMass, Material, SectionShape, Segment};
@@ -222,5 +225,17 @@ impl Robot {
     /// The carried body with this name.
     pub fn body(&self, name: &str) -> Option<&CarriedBody> {
         self.carried.iter().find(|b| b.name == name)
+    }
+
+    /// Where a string gripped by `palm` runs, off the arm's axis, m: [across the arm in the lift
+    /// plane (body y), normal to the plane (body z)]; midway between the jaws (the carried bodies
+    /// on prismatic joints), else through the palm's centre of mass.
+    pub fn string_axis_offset_m(&self, palm: &CarriedBody) -> [f64; 2] {
+        let jaws: Vec<&CarriedBody> = self.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
+        if jaws.is_empty() {
+            return [palm.lateral_m, palm.normal_offset_m];
+        }
+        let mean = |f: fn(&CarriedBody) -> f64| jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64;
+        [mean(|b| b.lateral_m), mean(|b| b.normal_offset_m)]
     }
 }

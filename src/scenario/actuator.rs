@@ -17,12 +17,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Check, ScenarioError};
+use super::{Check, ScenarioError, loop_advice};
 use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, Valve};
 use nalgebra::Complex;
 
-use crate::arm::{ArmError, ArmModel, ArmSimulation};
+use crate::arm::{ArmError, ArmModel, ArmSimulation, HubDrive};
 use crate::beam::BeamModel;
+use crate::drive::MotionLaw;
 use crate::integrate::IntegratorKind;
 use crate::model::Model;
 use crate::robot::Robot;
@@ -230,40 +231,46 @@ impl Check<'_> {
         let fidelity = crate::select::fidelity_for(model, &beam, &modes).map_err(|e| invalid_arm(&e))?.fidelity;
         let arm = ArmModel::with_modes(beam, modes, fidelity, model.arm_options()).map_err(|e| invalid_arm(&e))?;
         let start = self.holding(model, ArmSimulation::new(arm.clone(), model.hub_drive(), model.integrator))?;
-        let mut poles = self.decaying_poles(&start, "at the start")?;
+        let mut poles = self.decaying_poles(model, &arm, &start, &|m: &Model| m.hub_drive(), "at the start")?;
         let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());
         for k in 1..=LOOP_CHECK_POINTS {
             let angle = lo + (hi - lo) * k as f64 / LOOP_CHECK_POINTS as f64;
             let held = model.hub_drive_held_at(angle);
             let at = format!("at rest at {:.1} deg on the drive's path", angle.to_degrees());
             let sim = self.holding(model, ArmSimulation::new(arm.clone(), held, model.integrator))?;
-            poles.extend(self.decaying_poles(&sim, &at)?);
+            poles.extend(self.decaying_poles(model, &arm, &sim, &|m: &Model| m.hub_drive_held_at(angle), &at)?);
         }
         self.explicit_step_resolves(model, &poles)
     }
 
-    /// The poles of `sim` linearised, or an error naming the growing one, `at` where.
-    fn decaying_poles(&self, sim: &ArmSimulation, at: &str) -> Result<Vec<Complex<f64>>, ScenarioError> {
+    /// The poles of `sim` (the arm `arm` held by `drive_of` the model) linearised, or an error
+    /// naming the growing one, `at` where, with the settings that move it and which way
+    /// ([`loop_advice`]).
+    fn decaying_poles(
+        &self,
+        model: &Model,
+        arm: &ArmModel,
+        sim: &ArmSimulation,
+        drive_of: &dyn Fn(&Model) -> HubDrive,
+        at: &str,
+    ) -> Result<Vec<Complex<f64>>, ScenarioError> {
         let poles = sim
             .linear_poles()
             .map_err(|e| self.invalid("actuator.kind", format!("linearising the arm {at} fails: {e}")))?;
-        let growing =
-            poles.iter().copied().filter(|p| p.re > 1e-6 * p.norm().max(1.0)).max_by(|a, b| a.re.total_cmp(&b.re));
-        match growing {
-            None => Ok(poles),
-            Some(p) => Err(self.invalid(
-                "actuator.controller.kp",
-                format!(
-                    "the closed loop linearised {at} has a growing mode: pole {:.3} {:+.3}i rad/s ({:.2} Hz, \
-                     doubling every {:.2} s): allowed gains whose poles all decay (lower kp, add kd, or more valve \
-                     leakage for a hydraulic drive: docs/drives.md)",
-                    p.re,
-                    p.im,
-                    p.im.abs() / std::f64::consts::TAU,
-                    std::f64::consts::LN_2 / p.re
-                ),
-            )),
-        }
+        let growing = poles.iter().copied().filter(|p| loop_advice::grows(*p)).max_by(|a, b| a.re.total_cmp(&b.re));
+        let Some(p) = growing else { return Ok(poles) };
+        let (key, advice) = loop_advice::advice(model, arm, drive_of, p);
+        Err(self.invalid(
+            key,
+            format!(
+                "the closed loop linearised {at} has a growing mode: pole {:.3} ± {:.3}i rad/s ({:.2} Hz, doubling \
+                 every {:.2} s); {advice}",
+                p.re,
+                p.im.abs(),
+                p.im.abs() / std::f64::consts::TAU,
+                std::f64::consts::LN_2 / p.re
+            ),
+        ))
     }
 
     /// An explicit integrator's step keeps every pole inside its stability region, with a
@@ -295,7 +302,7 @@ impl Check<'_> {
         Err(self.invalid(
             "time.step_s",
             format!(
-                "{} is explicit and the arm with its drive has poles its step {step} s does not keep in its stability \
+                "{} is explicit and the arm with its actuator has poles its step {step} s does not keep in its stability \
                  region with a margin (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
                 integrator.name(),
                 fastest * step
@@ -310,7 +317,7 @@ impl Check<'_> {
         if rate <= hub_limit * (1.0 + 1e-9) {
             return Ok(());
         }
-        let (key, remedy) = if motion.name() == "table" {
+        let (key, remedy) = if motion.law() == MotionLaw::Table {
             ("drive.file", "a slower table")
         } else {
             ("drive.duration_s", "a longer move")
@@ -393,7 +400,7 @@ impl Check<'_> {
     fn holding(&self, model: &Model, started: Result<ArmSimulation, ArmError>) -> Result<ArmSimulation, ScenarioError> {
         let why = match started {
             Ok(sim) => return Ok(sim),
-            Err(ArmError::InvalidParameter { name, allowed, .. }) if name == "actuator" => allowed,
+            Err(ArmError::ActuatorCannotHold { why, .. }) => why,
             Err(e) => return Err(self.invalid("actuator.kind", format!("the actuated start fails: {e}"))),
         };
         let source = model.robot.source.display();

@@ -1,15 +1,61 @@
 //! The `[drive]` table: the hub's motion as a scenario states it (degrees), its checks, and the
-//! profile it resolves to — shaped, if it asks for an input shaper, with the arm's frequency
-//! ([`crate::select::shaper_tuning_hz`]).
+//! profile it resolves to — shaped, if it asks for an input shaper, tuned to the modes given or
+//! to those the move leaves ringing ([`crate::tuning`]).
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
 use super::{Check, Scenario, ScenarioError};
-use crate::drive::{DriveError, MotionProfile, SCurveLimit, Shaper, TableError, TrapezoidLimit};
-use crate::model::Model;
-use crate::select;
+use crate::drive::{DriveError, MotionLaw, MotionProfile, SCurveLimit, Shaper, ShaperMode, TableError, TrapezoidLimit};
+use crate::model::{Model, TunedMode};
+use crate::tuning;
+
+/// A number for every mode, or one per mode: `shaper_hz = 5.1`, `shaper_hz = [2.85, 5.1]`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged, expecting = "a number or a list of numbers")]
+pub enum PerMode {
+    /// One number.
+    One(f64),
+    /// One per mode.
+    Many(Vec<f64>),
+}
+
+/// `drive.shaper_hz`, its key named if it is neither a number nor a list of them.
+fn shaper_hz<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<PerMode>, D::Error> {
+    PerMode::deserialize(d)
+        .map(Some)
+        .map_err(|_| serde::de::Error::custom("key `drive.shaper_hz`: allowed a number or a list of numbers (Hz)"))
+}
+
+/// `drive.shaper_damping_ratio`, as [`shaper_hz`].
+fn shaper_damping_ratio<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Option<PerMode>, D::Error> {
+    PerMode::deserialize(d).map(Some).map_err(|_| {
+        serde::de::Error::custom("key `drive.shaper_damping_ratio`: allowed a number or a list of numbers")
+    })
+}
+
+impl PerMode {
+    /// The numbers given.
+    pub fn values(&self) -> &[f64] {
+        match self {
+            PerMode::One(x) => std::slice::from_ref(x),
+            PerMode::Many(v) => v,
+        }
+    }
+}
+
+/// What a drive's `shaper` keys ask for: the shaper, and the modes' frequencies (Hz) and damping
+/// ratios if given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShaperRequest<'a> {
+    /// The shaper.
+    pub shaper: Shaper,
+    /// `shaper_hz`: the modes' natural frequencies, Hz.
+    pub frequencies_hz: Option<&'a [f64]>,
+    /// `shaper_damping_ratio`: one for every mode, or one per mode.
+    pub damping_ratios: Option<&'a [f64]>,
+}
 
 /// Hub motion profiles; angles in degrees.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -24,10 +70,14 @@ pub enum DriveSpec {
         /// when absent, so that a sweep's case hashes do not change.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         shaper: Option<Shaper>,
-        /// The shaper's tuning frequency, Hz (default: the arm's first mode,
-        /// [`select::shaper_tuning_hz`]).
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        shaper_hz: Option<f64>,
+        /// The natural frequencies the shaper cancels, Hz: one or a list (default: the modes the
+        /// move leaves ringing, [`tuning::shaper_modes`]).
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_hz")]
+        shaper_hz: Option<PerMode>,
+        /// Their damping ratios: one for all, or one per `shaper_hz` (default: the arm's first
+        /// modal one; with automatic tuning, each mode's own).
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_damping_ratio")]
+        shaper_damping_ratio: Option<PerMode>,
     },
     /// Accel-limited: give `accel_deg_s2` or `ramp_fraction` (accel phase / duration).
     Trapezoidal {
@@ -40,8 +90,11 @@ pub enum DriveSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         shaper: Option<Shaper>,
         /// As the uniform drive's.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        shaper_hz: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_hz")]
+        shaper_hz: Option<PerMode>,
+        /// As the uniform drive's.
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_damping_ratio")]
+        shaper_damping_ratio: Option<PerMode>,
     },
     /// Jerk-limited 7 segments: give `accel_deg_s2` + `jerk_deg_s3`, or `ramp_fraction` +
     /// `jerk_fraction`.
@@ -57,8 +110,11 @@ pub enum DriveSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         shaper: Option<Shaper>,
         /// As the uniform drive's.
-        #[serde(default, skip_serializing_if = "Option::is_none")]
-        shaper_hz: Option<f64>,
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_hz")]
+        shaper_hz: Option<PerMode>,
+        /// As the uniform drive's.
+        #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_damping_ratio")]
+        shaper_damping_ratio: Option<PerMode>,
     },
     /// Hold still at an angle.
     Hold { angle_deg: f64 },
@@ -71,14 +127,18 @@ pub enum DriveSpec {
 impl Check<'_> {
     /// The drive's profile; a table is read from its file, relative to the scenario.
     pub(super) fn drive(&self, drive: &DriveSpec) -> Result<MotionProfile, ScenarioError> {
-        let tunes_nothing = matches!(
-            drive,
-            DriveSpec::Uniform { shaper: None, shaper_hz: Some(_), .. }
-                | DriveSpec::Trapezoidal { shaper: None, shaper_hz: Some(_), .. }
-                | DriveSpec::SCurve { shaper: None, shaper_hz: Some(_), .. }
-        );
+        let (tunes_nothing, damps_unknown) = match drive.shaping_keys() {
+            Some((shaper, hz, damping)) => (shaper.is_none() && hz.is_some(), hz.is_none() && damping.is_some()),
+            None => (false, false),
+        };
         if tunes_nothing {
             return Err(self.invalid("drive.shaper_hz", "tunes an input shaper: set drive.shaper (zv, zvd or ei) too"));
+        }
+        if damps_unknown {
+            return Err(self.invalid(
+                "drive.shaper_damping_ratio",
+                "needs drive.shaper_hz (the modes it damps); without it each mode found is tuned to its own damping",
+            ));
         }
         match drive {
             DriveSpec::Table { file, end_rate_deg_s } => {
@@ -92,29 +152,78 @@ impl Check<'_> {
         }
     }
 
-    /// The shaped drive: tuned to `shaper_hz` (Hz) if given, else to the arm's first mode with
-    /// its payload and actuator at the end of the path ([`select::shaper_tuning_hz`], on `model`
-    /// built with the unshaped move), damped by the arm's first modal damping ratio; the base
-    /// move shortened by the shaper's length so that the lift keeps its `duration_s`.
+    /// The shaped drive and, where the modes were found rather than given, how each was picked:
+    /// tuned to `shaper_hz` if given (damped by `shaper_damping_ratio`, else by the arm's first
+    /// modal damping ratio), else to the modes the unshaped move leaves ringing
+    /// ([`tuning::shaper_modes`], on `model` built with the unshaped move); the base move shortened
+    /// by the shaper's length so that the lift keeps its `duration_s`.
     pub(super) fn shaped(
         &self,
         drive: &DriveSpec,
-        shaper_hz: Option<f64>,
+        request: ShaperRequest<'_>,
         model: &Model,
-    ) -> Result<MotionProfile, ScenarioError> {
-        let frequency_hz = match shaper_hz {
-            Some(f) if f.is_finite() && f > 0.0 => f,
-            Some(f) => return Err(self.invalid("drive.shaper_hz", format!("{f} is outside > 0 Hz (finite)"))),
-            None => select::shaper_tuning_hz(model).ok_or_else(|| {
-                self.invalid(
-                    "drive.shaper",
-                    "the arm's first frequency at the end of the path cannot be computed (the arm or its drive does \
-                     not linearise there): set drive.shaper_hz",
-                )
-            })?,
+    ) -> Result<(MotionProfile, Vec<TunedMode>), ScenarioError> {
+        let (modes, tuned) = match request.frequencies_hz {
+            Some(frequencies) => (self.given_modes(frequencies, request.damping_ratios, model)?, Vec::new()),
+            None => {
+                let found = tuning::shaper_modes(model).map_err(|e| {
+                    self.invalid(
+                        "drive.shaper",
+                        format!("the arm's modes at the end of the path cannot be computed ({e}): set drive.shaper_hz"),
+                    )
+                })?;
+                if found.is_empty() {
+                    return Err(self.invalid(
+                        "drive.shaper",
+                        "the arm with its drive has no oscillating mode at the end of the path: set drive.shaper_hz",
+                    ));
+                }
+                let modes =
+                    found.iter().map(|m| ShaperMode { frequency_hz: m.frequency_hz, damping_ratio: m.damping_ratio });
+                (modes.collect(), found)
+            }
         };
-        let damping_ratio = model.robot.arm.damping_ratios.first().copied().unwrap_or(0.0);
-        drive.shaped_motion(frequency_hz, damping_ratio).map_err(|e| drive_error(self.path, e))
+        let motion = drive.shaped_motion(&modes).map_err(|e| drive_error(self.path, e))?;
+        Ok((motion, tuned))
+    }
+
+    /// The modes `shaper_hz` and `shaper_damping_ratio` give.
+    fn given_modes(
+        &self,
+        frequencies_hz: &[f64],
+        damping_ratios: Option<&[f64]>,
+        model: &Model,
+    ) -> Result<Vec<ShaperMode>, ScenarioError> {
+        if frequencies_hz.is_empty() {
+            return Err(self.invalid("drive.shaper_hz", "is empty: give a frequency or a list of them (Hz)"));
+        }
+        if let Some(f) = frequencies_hz.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+            return Err(self.invalid("drive.shaper_hz", format!("{f} is outside > 0 Hz (finite)")));
+        }
+        let first_modal = model.robot.arm.damping_ratios.first().copied().unwrap_or(0.0);
+        let ratios: Vec<f64> = match damping_ratios {
+            None => vec![first_modal; frequencies_hz.len()],
+            Some([one]) => vec![*one; frequencies_hz.len()],
+            Some(each) if each.len() == frequencies_hz.len() => each.to_vec(),
+            Some(each) => {
+                return Err(self.invalid(
+                    "drive.shaper_damping_ratio",
+                    format!(
+                        "has {} values for {} frequencies in drive.shaper_hz: give one for all or one per frequency",
+                        each.len(),
+                        frequencies_hz.len()
+                    ),
+                ));
+            }
+        };
+        if let Some(z) = ratios.iter().find(|z| !(0.0..1.0).contains(*z)) {
+            return Err(self.invalid("drive.shaper_damping_ratio", format!("{z} is outside 0 <= ratio < 1")));
+        }
+        Ok(frequencies_hz
+            .iter()
+            .zip(ratios)
+            .map(|(&frequency_hz, damping_ratio)| ShaperMode { frequency_hz, damping_ratio })
+            .collect())
     }
 
     /// The drive against the lift joint's URDF limits: its angles within the joint's range over
@@ -127,7 +236,7 @@ impl Check<'_> {
         let limits = format!("the lift joint's limits {:.3} ..= {:.3} deg", deg(lo), deg(hi));
         let outside = |angle: f64| !(lo - 1e-9..=hi + 1e-9).contains(&angle);
         let motion = &model.drive.motion;
-        let table = motion.name() == "table";
+        let table = motion.law() == MotionLaw::Table;
         if table {
             let (min, max) = motion.angle_range_rad(model.duration_s());
             if outside(min) || outside(max) {
@@ -161,50 +270,65 @@ impl Check<'_> {
 }
 
 impl DriveSpec {
-    /// The input shaper a uniform, trapezoidal or s-curve drive asks for, with its tuning
-    /// frequency (Hz) if given.
-    pub fn shaping(&self) -> Option<(Shaper, Option<f64>)> {
-        match *self {
-            DriveSpec::Uniform { shaper, shaper_hz, .. }
-            | DriveSpec::Trapezoidal { shaper, shaper_hz, .. }
-            | DriveSpec::SCurve { shaper, shaper_hz, .. } => shaper.map(|s| (s, shaper_hz)),
+    /// The input shaper a uniform, trapezoidal or s-curve drive asks for, with its tuning if
+    /// given.
+    pub fn shaping(&self) -> Option<ShaperRequest<'_>> {
+        let (shaper, hz, damping) = self.shaping_keys()?;
+        Some(ShaperRequest { shaper: shaper?, frequencies_hz: hz, damping_ratios: damping })
+    }
+
+    /// The `shaper`, `shaper_hz` and `shaper_damping_ratio` of a drive that takes them.
+    fn shaping_keys(&self) -> Option<(Option<Shaper>, Option<&[f64]>, Option<&[f64]>)> {
+        match self {
+            DriveSpec::Uniform { shaper, shaper_hz, shaper_damping_ratio, .. }
+            | DriveSpec::Trapezoidal { shaper, shaper_hz, shaper_damping_ratio, .. }
+            | DriveSpec::SCurve { shaper, shaper_hz, shaper_damping_ratio, .. } => Some((
+                *shaper,
+                shaper_hz.as_ref().map(PerMode::values),
+                shaper_damping_ratio.as_ref().map(PerMode::values),
+            )),
             DriveSpec::Hold { .. } | DriveSpec::Table { .. } => None,
         }
     }
 
     /// The motion profile of a built-in law, in radians, unshaped: a drive's `shaper`, which needs
-    /// the arm's frequency, is applied by [`Self::shaped_motion`] (as [`Scenario::load`] does). A
+    /// the arm's modes, is applied by [`Self::shaped_motion`] (as [`Scenario::load`] does). A
     /// table is read relative to its scenario file ([`Scenario::load`],
     /// [`MotionProfile::from_csv`]); here it is an error.
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
         self.profile(None)
     }
 
-    /// The drive with its `shaper` tuned to `frequency_hz` (Hz) and `damping_ratio`: the base
-    /// move over `duration_s` minus the shaper's length, convolved with the shaper's impulses, so
-    /// that the whole lift still takes `duration_s`. Without a shaper, [`Self::motion`].
+    /// The drive with its `shaper` tuned to every one of `modes`: the base move over
+    /// `duration_s` minus the shaper's length, convolved with the shaper's impulses, so that the
+    /// whole lift still takes `duration_s`. Without a shaper, [`Self::motion`].
     ///
     /// # Errors
-    /// As [`Self::motion`]; `duration_s` not longer than the shaper's length; a frequency or
-    /// damping ratio [`MotionProfile::shaped`] refuses.
-    pub fn shaped_motion(&self, frequency_hz: f64, damping_ratio: f64) -> Result<MotionProfile, DriveError> {
-        let (Some((shaper, _)), Some(duration_s)) = (self.shaping(), self.duration_s()) else { return self.motion() };
-        if !(frequency_hz.is_finite() && frequency_hz > 0.0 && (0.0..1.0).contains(&damping_ratio)) {
-            return MotionProfile::shaped(self.motion()?, shaper, frequency_hz, damping_ratio);
+    /// As [`Self::motion`]; `duration_s` not longer than the shaper's length; modes
+    /// [`MotionProfile::shaped_for`] refuses.
+    pub fn shaped_motion(&self, modes: &[ShaperMode]) -> Result<MotionProfile, DriveError> {
+        let (Some(request), Some(duration_s)) = (self.shaping(), self.duration_s()) else { return self.motion() };
+        let shaper = request.shaper;
+        let valid = |m: &ShaperMode| {
+            m.frequency_hz.is_finite() && m.frequency_hz > 0.0 && (0.0..1.0).contains(&m.damping_ratio)
+        };
+        if modes.is_empty() || !modes.iter().all(valid) {
+            return MotionProfile::shaped_for(self.motion()?, shaper, modes);
         }
-        let length_s = shaper.length_s(frequency_hz, damping_ratio);
+        let length_s = shaper.length_for_s(modes);
         if duration_s <= length_s {
+            let listed: Vec<String> = modes.iter().map(|m| format!("{:.4}", m.frequency_hz)).collect();
             return Err(DriveError::InvalidParameter {
                 name: "duration_s",
                 value: duration_s,
                 allowed: format!(
-                    "> the {} shaper's length {length_s:.3} s at {frequency_hz:.4} Hz (the base move lasts duration_s \
-                     minus it)",
-                    shaper.name()
+                    "> the {} shaper's length {length_s:.3} s at [{}] Hz (the base move lasts duration_s minus it)",
+                    shaper.name(),
+                    listed.join(", ")
                 ),
             });
         }
-        MotionProfile::shaped(self.profile(Some(duration_s - length_s))?, shaper, frequency_hz, damping_ratio)
+        MotionProfile::shaped_for(self.profile(Some(duration_s - length_s))?, shaper, modes)
     }
 
     /// The lift time of a point-to-point drive, s.

@@ -151,10 +151,8 @@ impl Check<'_> {
             let key = |k: &str| format!("structures[{i}].{k}");
             let taken = structures.iter().any(|s| s.name == spec.name) || dampener_names.contains(&spec.name.as_str());
             if spec.name.is_empty() || taken {
-                return Err(self.invalid(
-                    &key("name"),
-                    format!("`{}`: allowed a name no other structure or dampener has", spec.name),
-                ));
+                return Err(self
+                    .invalid(&key("name"), format!("`{}`: allowed a name no other structure or pad has", spec.name)));
             }
             let in_size = |v: f64| v.is_finite() && v > 0.0 && v <= MAX_SIZE_M;
             let shape = match spec.shape {

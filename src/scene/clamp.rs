@@ -13,12 +13,10 @@
 //! `detect_collisions` on a world, as the `compliant` pads once did every step (they now query
 //! parry directly), stops rapier 0.36 from moving that world's dynamic bodies in later steps.
 
-use std::any::Any;
-
 use rapier3d_f64::prelude::*;
 
 use super::geometry::{ArmPiece, ArmView};
-use super::source::ContactSource;
+use super::source::{ContactSource, GripReading};
 use crate::arm::{ArmContact, GeneralizedLoad};
 use crate::model::HeldString;
 use crate::robot::{CarriedBody, Mount, Robot, Shape};
@@ -80,7 +78,7 @@ impl FrictionGrip {
     pub fn new(held: &HeldString, robot: &Robot, at: ClampPlacement, gravity_m_s2: f64, step_s: f64) -> Self {
         let (palm, palm_pose, string_piece) = (at.palm, at.palm_pose, at.string);
         let clamp = held.friction;
-        let string = held.pipe;
+        let string = &held.pipe;
         let mut world = PhysicsWorld::new();
         world.gravity = Vector::new(0.0, -gravity_m_s2, 0.0);
         world.integration_parameters.dt = step_s;
@@ -225,12 +223,13 @@ impl ContactSource for FrictionGrip {
         ))
     }
 
-    fn as_any(&self) -> &dyn Any {
-        self
+    fn grip(&self) -> Option<GripReading> {
+        Some(GripReading { slip_m: self.slip_m, jaw_sinking_m: self.jaw_sinking_m, squeeze_n: self.squeeze_n })
     }
 
-    fn as_any_mut(&mut self) -> &mut dyn Any {
-        self
+    fn take_string_load(&mut self, load_n: [f64; 2]) -> Option<f64> {
+        self.string_load_n = load_n;
+        Some(self.slip_m)
     }
 }
 

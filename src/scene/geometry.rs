@@ -10,11 +10,32 @@ use crate::drive::DriveState;
 use crate::model::Model;
 use crate::robot::Shape;
 
+/// The body of the machine on one side of a pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// The arm, its hub and the bodies it carries.
+    Arm,
+    /// The held string (rigid or a beam of its own).
+    String,
+}
+
+impl Side {
+    /// The side's name in pair names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Side::Arm => "arm",
+            Side::String => "string",
+        }
+    }
+}
+
 /// A rapier shape riding on the arm at a station.
 #[derive(Debug, Clone)]
 pub struct ArmPiece {
-    /// Part name (`arm`, a link name, `string`).
+    /// Part name (`arm`, a link name, `string`), for the recording.
     pub name: String,
+    /// Whose body it is: the arm's (the arm and the links it carries) or the held string's.
+    pub side: Side,
     /// True for the finite-element boxes of the arm itself.
     pub is_arm_element: bool,
     /// True for the segments of a string modelled as a beam of its own: they ride on the string's
@@ -62,6 +83,7 @@ impl ArmPiece {
     ) -> Self {
         ArmPiece {
             name: name.into(),
+            side: Side::Arm,
             is_arm_element: false,
             on_string: false,
             station_m,
@@ -111,6 +133,7 @@ pub fn string_segments(string: &ArmPiece, arm: &ArmModel) -> Vec<ArmPiece> {
             let at = [station, string.lateral_m, string.normal_offset_m];
             let mut piece = ArmPiece::new("string", at, string.local_rotation, [radius, 0.5 * segment, radius], shape);
             piece.on_string = true;
+            piece.side = Side::String;
             piece.rows = rows;
             Some(piece)
         })
@@ -154,23 +177,19 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
     if let Some(held) = model.payload.string()
         && let Some(clamp) = robot.body(&held.palm().hand)
     {
-        // The string's axis runs along the arm, midway between the jaws.
-        let jaws: Vec<_> = robot.carried.iter().filter(|b| b.mount.is_prismatic()).collect();
-        let mean = |f: fn(&crate::robot::CarriedBody) -> f64, own: f64| {
-            if jaws.is_empty() { own } else { jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64 }
-        };
-        let lateral = mean(|b| b.lateral_m, clamp.lateral_m);
-        let normal = mean(|b| b.normal_offset_m, clamp.normal_offset_m);
+        let [lateral, normal] = robot.string_axis_offset_m(clamp);
         let radius = 0.5 * held.pipe.pipe.outer_diameter_m;
         let half_length = 0.5 * held.pipe.length_m;
         let along_arm = Rotation::from_rotation_z(-std::f64::consts::FRAC_PI_2);
-        pieces.push(ArmPiece::new(
+        let mut string = ArmPiece::new(
             "string",
             [held.centre_m(), lateral, normal],
             along_arm,
             [radius, half_length, radius],
             SharedShape::cylinder(half_length, radius),
-        ));
+        );
+        string.side = Side::String;
+        pieces.push(string);
     }
     pieces
 }

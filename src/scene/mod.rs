@@ -33,15 +33,15 @@ use crate::integrate::StepControl;
 use crate::model::{ContactMethod, Detection, Model, StructureShape};
 use clamp::ClampPlacement;
 pub use clamp::FrictionGrip;
-pub use geometry::{ArmPiece, ArmView};
+pub use geometry::{ArmPiece, ArmView, Side};
 use geometry::{pose_piece, shapes_of_robot, string_segments};
 use pad_faces::PadFaces;
-pub use pair::{ContactPair, Obstacle, PointReading, Side, structure_in_rest_pose};
+pub use pair::{ContactPair, Obstacle, PointReading, structure_in_rest_pose};
 use pipeline::PipelineContacts;
 pub use pipeline::{ManifoldPoint, manifold_between};
 use rapier_pads::RapierPads;
 pub use rapier_pads::{UnsupportedPad, rapier_pad_spring};
-pub use source::ContactSource;
+pub use source::{ContactSource, GripReading};
 
 /// The arm, the shapes riding on it and the sources of its contact loads.
 pub struct Scene {
@@ -118,15 +118,15 @@ impl Scene {
             .into_iter()
             .filter(|p| friction.is_none() || !jaw_names.contains(&p.name.as_str()))
             .collect();
-        let clamped_string = friction.and_then(|_| pieces.iter().find(|p| p.name == "string").cloned());
+        let clamped_string = friction.and_then(|_| pieces.iter().find(|p| p.side == Side::String).cloned());
         let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
-        let string_normal_offset_m = pieces.iter().find(|p| p.name == "string").map_or(0.0, |p| p.normal_offset_m);
+        let string_normal_offset_m = pieces.iter().find(|p| p.side == Side::String).map_or(0.0, |p| p.normal_offset_m);
         for piece in &mut pieces {
             piece.rows = arm.arm.station_rows(piece.station_m);
         }
         // A flexible string rides on its own sections: cut into segments that do.
         if string.as_ref().is_some_and(|s| s.is_flexible())
-            && let Some(i) = pieces.iter().position(|p| p.name == "string")
+            && let Some(i) = pieces.iter().position(|p| p.side == Side::String)
         {
             let whole = pieces.remove(i);
             pieces.extend(string_segments(&whole, &arm.arm));
@@ -222,11 +222,8 @@ impl Scene {
     fn exchange_with_grip(&mut self) {
         let on_string = self.pairs().filter(|p| p.side == Side::String).flat_map(|p| &p.points);
         let load = on_string.fold([0.0; 2], |sum, r| [sum[0] + r.force_n[0], sum[1] + r.force_n[1]]);
-        let grip = self.sources.iter_mut().find_map(|s| s.as_any_mut().downcast_mut::<FrictionGrip>());
-        let Some(grip) = grip else { return };
-        grip.string_load_n = load;
-        let slip_m = grip.slip_m;
-        self.pieces.iter_mut().filter(|p| p.name == "string").for_each(|p| p.axial_shift_m = slip_m);
+        let Some(slip_m) = self.sources.iter_mut().find_map(|s| s.take_string_load(load)) else { return };
+        self.pieces.iter_mut().filter(|p| p.side == Side::String).for_each(|p| p.axial_shift_m = slip_m);
     }
 
     /// Whether the next step may be `free_step_s` long: no source has anything that could begin
@@ -276,8 +273,8 @@ impl Scene {
     }
 
     /// The friction clamp, if the string is held by one.
-    pub fn grip(&self) -> Option<&FrictionGrip> {
-        self.sources.iter().find_map(|s| s.as_any().downcast_ref::<FrictionGrip>())
+    pub fn grip(&self) -> Option<GripReading> {
+        self.sources.iter().find_map(|s| s.grip())
     }
 
     /// What makes the scene's state meaningless though the arm's is not, if anything.

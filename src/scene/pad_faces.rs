@@ -8,8 +8,6 @@
 //! plane), so the pipeline's Winkler spreading gives the same force. It sees the arm's own face
 //! only: shapes standing out beyond it, and structures, need the pipeline (`auto` knows).
 
-use std::any::Any;
-
 use super::geometry::ArmView;
 use super::pair::ContactPair;
 use super::source::ContactSource;
@@ -73,13 +71,5 @@ impl ContactSource for PadFaces {
 
     fn fault(&self) -> Option<String> {
         self.pads.iter().find_map(ContactPair::fault)
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn as_any_mut(&mut self) -> &mut dyn Any {
-        self
     }
 }

@@ -4,37 +4,13 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::geometry::{ArmPiece, ArmView};
+use super::geometry::{ArmPiece, ArmView, Side};
 use super::pads::PadPlacement;
 use crate::arm::ArmModel;
 use crate::contact::ForceLaw;
 use crate::drive::DriveState;
 use crate::model::{Dampener, Model, Structure, StructureShape};
 use nalgebra::DVector;
-
-/// The body of the machine on one side of a pair.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Side {
-    /// The arm, its hub and the bodies it carries.
-    Arm,
-    /// The held string (rigid or a beam of its own).
-    String,
-}
-
-impl Side {
-    /// The side's name in pair names.
-    pub fn name(self) -> &'static str {
-        match self {
-            Side::Arm => "arm",
-            Side::String => "string",
-        }
-    }
-
-    /// The side a piece belongs to.
-    pub fn of(piece: &ArmPiece) -> Self {
-        if piece.name == "string" { Side::String } else { Side::Arm }
-    }
-}
 
 /// What a pair's body strikes.
 #[derive(Debug, Clone)]
@@ -174,7 +150,7 @@ impl ContactPair {
 
     /// Whether a piece takes part in this pair.
     pub fn involves(&self, piece: &ArmPiece) -> bool {
-        Side::of(piece) == self.side
+        piece.side == self.side
     }
 
     /// Whether the machine could touch the obstacle within `travel_m`, the fastest point's travel

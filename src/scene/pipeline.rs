@@ -9,8 +9,6 @@
 //! penetration and rate. A flat face pressed evenly then gives the law's force whatever N is; a
 //! tilted one the mean of the law over the points.
 
-use std::any::Any;
-
 use rapier3d_f64::prelude::*;
 
 use super::geometry::{ArmPiece, ArmView};
@@ -260,13 +258,5 @@ impl ContactSource for PipelineContacts {
 
     fn fault(&self) -> Option<String> {
         self.pairs.iter().find_map(ContactPair::fault)
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn as_any_mut(&mut self) -> &mut dyn Any {
-        self
     }
 }

@@ -13,8 +13,6 @@
 //!   and it is stable while the pad is light against the arm's effective mass at the pad (the
 //!   added-mass ratio; docs/accuracy.md maps where it fails).
 
-use std::any::Any;
-
 use rapier3d_f64::prelude::*;
 
 use super::geometry::ArmView;
@@ -277,13 +275,5 @@ impl ContactSource for RapierPads {
              contact.kind = \"compliant\"",
             self.pad_mass_kg
         ))
-    }
-
-    fn as_any(&self) -> &dyn Any {
-        self
-    }
-
-    fn as_any_mut(&mut self) -> &mut dyn Any {
-        self
     }
 }

@@ -16,8 +16,6 @@
 //!
 //! A new source implements the trait and is added to the scene's list; the step does not change.
 
-use std::any::Any;
-
 use super::geometry::ArmView;
 use super::pair::ContactPair;
 use crate::arm::{ArmContact, GeneralizedLoad};
@@ -58,9 +56,26 @@ pub trait ContactSource {
         None
     }
 
-    /// The source as `Any`, for callers that need its concrete type (the friction clamp's slip).
-    fn as_any(&self) -> &dyn Any;
+    /// What a friction clamp reads of the string it holds, if this source is one.
+    fn grip(&self) -> Option<GripReading> {
+        None
+    }
 
-    /// The source as mutable `Any` (the scene hands the friction clamp the structures' load).
-    fn as_any_mut(&mut self) -> &mut dyn Any;
+    /// Hands a source that holds the string the structures' force on it, N in the hub frame
+    /// (x along the arm, y across it), for its next step; returns the string's slip along the
+    /// arm, m, where this source is the one that integrates it.
+    fn take_string_load(&mut self, _load_n: [f64; 2]) -> Option<f64> {
+        None
+    }
+}
+
+/// What a friction clamp reads of the string it holds, at the end of the last step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct GripReading {
+    /// The string's slip along the arm from where it was gripped, m.
+    pub slip_m: f64,
+    /// How deep the jaws have sunk into the string, m.
+    pub jaw_sinking_m: f64,
+    /// Each jaw's squeeze, N.
+    pub squeeze_n: f64,
 }

@@ -39,12 +39,14 @@ enum Form {
 }
 
 /// An overhang of a rigid string: its root at `root_d_m` from the centre, `length_m` long,
-/// running outward (`+1`) or toward the pivot (`−1`).
-#[derive(Debug, Clone, Copy)]
+/// running outward (`+1`) or toward the pivot (`−1`), and the masses its connections add on it,
+/// (distance from the root, kg).
+#[derive(Debug, Clone)]
 struct Overhang {
     root_d_m: f64,
     length_m: f64,
     direction: f64,
+    added_masses: Vec<(f64, f64)>,
 }
 
 /// One step's reading.
@@ -63,10 +65,10 @@ impl StringProbe {
     /// Prepares the probe for `held` on `arm` (a flexible string when the arm's beam carries it
     /// as a member, else the rigid one).
     pub fn new(held: &HeldString, arm: &ArmModel) -> Self {
-        let p = held.pipe.pipe;
+        let p = &held.pipe.pipe;
         let (r_out, r_in) = (0.5 * p.outer_diameter_m, 0.5 * p.outer_diameter_m - p.wall_m);
         let second_moment_m4 = std::f64::consts::FRAC_PI_4 * (r_out.powi(4) - r_in.powi(4));
-        let e = crate::beam::Material::STEEL.youngs_modulus_pa;
+        let e = p.youngs_modulus_pa;
         let start = held.start_m();
         let ends_m = [start, start + held.pipe.length_m];
         let form = match &arm.beam.member {
@@ -87,12 +89,27 @@ impl StringProbe {
             None => {
                 let centre_m = held.centre_m();
                 let (first, last) = (&held.grips[0], held.palm());
+                // The connections beyond each outermost hand, by their distance from it.
+                let beyond = |at_m: f64, direction: f64| -> Vec<(f64, f64)> {
+                    held.pipe
+                        .connections
+                        .iter()
+                        .map(|c| (direction * (c.centre_m() - at_m), c.added_mass_kg))
+                        .filter(|(s, _)| *s > 0.0)
+                        .collect()
+                };
                 let overhangs = vec![
-                    Overhang { root_d_m: first.station_m - centre_m, length_m: first.at_m, direction: -1.0 },
+                    Overhang {
+                        root_d_m: first.station_m - centre_m,
+                        length_m: first.at_m,
+                        direction: -1.0,
+                        added_masses: beyond(first.at_m, -1.0),
+                    },
                     Overhang {
                         root_d_m: last.station_m - centre_m,
                         length_m: held.pipe.length_m - last.at_m,
                         direction: 1.0,
+                        added_masses: beyond(last.at_m, 1.0),
                     },
                 ];
                 Form::Rigid {
@@ -140,8 +157,11 @@ impl StringProbe {
                 let psi_dd = alpha + phidd;
                 let moment = |o: &Overhang| {
                     let root = f_normal + psi_dd * o.root_d_m;
+                    let added: f64 =
+                        o.added_masses.iter().map(|(s, m)| m * (root + o.direction * psi_dd * s) * s).sum();
                     mass_per_length_kg_m
                         * (root * o.length_m.powi(2) / 2.0 + o.direction * psi_dd * o.length_m.powi(3) / 3.0)
+                        + added
                 };
                 StringReading {
                     tip_deflection_m: v + (self.ends_m[1] - centre_m) * phi,
@@ -183,6 +203,12 @@ pub struct StringSummary {
     pub max_bending_stress_time_s: f64,
     /// Largest |deflection| of its far end normal to the arm, hub frame, m.
     pub max_tip_deflection_m: f64,
+    /// The minimum yield strength of its steel, Pa, where its grade (or its own pipe) gives one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub yield_strength_pa: Option<f64>,
+    /// Its largest bending stress over that yield strength.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress_to_yield: Option<f64>,
 }
 
 impl StringSummary {
@@ -205,6 +231,7 @@ impl StringSummary {
                 crate::beam::BeamModel::new(spec)?.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default()
             }
         };
+        let yield_strength_pa = model.payload.string().and_then(|held| held.pipe.pipe.yield_strength_pa);
         let (i, stress) =
             stress_pa.iter().enumerate().fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
         Ok(StringSummary {
@@ -214,6 +241,8 @@ impl StringSummary {
             max_bending_stress_pa: stress,
             max_bending_stress_time_s: t_s.get(i).copied().unwrap_or(0.0),
             max_tip_deflection_m: tip_deflection_m.iter().map(|d| d.abs()).fold(0.0, f64::max),
+            yield_strength_pa,
+            stress_to_yield: yield_strength_pa.map(|y| stress / y),
         })
     }
 }

@@ -251,20 +251,83 @@ fn array_index(len: usize, segment: &str, at: &str) -> Result<usize, String> {
     }
 }
 
-/// The number at dotted `key` of a TOML document (array entries by index).
+/// The number at `key` of a TOML document, written as errors write it (`dampeners[0].gap_m`) or
+/// dotted (`dampeners.0.gap_m`), in the current spelling or an old one.
 pub fn get_number(document: &toml::Value, key: &str) -> Option<f64> {
-    let mut node = document;
-    for segment in key.split('.') {
-        node = match node {
-            toml::Value::Table(table) => table.get(segment)?,
-            toml::Value::Array(items) => items.get(segment.parse::<usize>().ok()?)?,
-            _ => return None,
-        };
-    }
+    as_number(node_at(document, &key_segments(&crate::scenario::spelling::modern_key(key)))?)
+}
+
+/// Why `key` cannot be varied in the scenario at `path`, with the numeric keys near it: those
+/// under the deepest part of `key` that exists (or beside `key` where it is not a number).
+pub fn not_a_number(document: &toml::Value, key: &str, path: &Path) -> String {
+    let modern = crate::scenario::spelling::modern_key(key);
+    let segments = key_segments(&modern);
+    let depth = (0..=segments.len()).rev().find(|&d| node_at(document, &segments[..d]).is_some()).unwrap_or(0);
+    let stem = if depth == segments.len() { depth.saturating_sub(1) } else { depth };
+    let node = node_at(document, &segments[..stem]).unwrap_or(document);
+    let mut near = Vec::new();
+    numeric_leaves(node, &bracketed(&segments[..stem]), &mut near);
+    let listed = if near.is_empty() {
+        "none there (numeric keys are numbers written in the scenario file, e.g. dampeners[0].gap_m)".to_string()
+    } else if near.len() > NEAR_KEYS {
+        format!("{}, ... ({} in all)", near[..NEAR_KEYS].join(", "), near.len())
+    } else {
+        near.join(", ")
+    };
+    format!("`{key}` is not a number in {}: numeric keys near it: {listed}", path.display())
+}
+
+/// How many numeric keys an error lists before it says how many there are.
+const NEAR_KEYS: usize = 12;
+
+/// The node at `segments` of a document (array entries by index).
+fn node_at<'a>(document: &'a toml::Value, segments: &[&str]) -> Option<&'a toml::Value> {
+    segments.iter().try_fold(document, |node, segment| match node {
+        toml::Value::Table(table) => table.get(*segment),
+        toml::Value::Array(items) => items.get(segment.parse::<usize>().ok()?),
+        _ => None,
+    })
+}
+
+fn as_number(node: &toml::Value) -> Option<f64> {
     match node {
         toml::Value::Float(x) => Some(*x),
         toml::Value::Integer(i) => Some(*i as f64),
         _ => None,
+    }
+}
+
+/// `segments` as a key in the form errors write it: `dampeners[0].gap_m`.
+fn bracketed(segments: &[&str]) -> String {
+    segments.iter().fold(String::new(), |mut key, segment| {
+        if segment.parse::<usize>().is_ok() {
+            key.push_str(&format!("[{segment}]"));
+        } else {
+            if !key.is_empty() {
+                key.push('.');
+            }
+            key.push_str(segment);
+        }
+        key
+    })
+}
+
+/// Every numeric leaf under `node`, as keys starting with `prefix`.
+fn numeric_leaves(node: &toml::Value, prefix: &str, out: &mut Vec<String>) {
+    match node {
+        toml::Value::Table(table) => {
+            for (name, child) in table {
+                let key = if prefix.is_empty() { name.clone() } else { format!("{prefix}.{name}") };
+                numeric_leaves(child, &key, out);
+            }
+        }
+        toml::Value::Array(items) => {
+            for (i, child) in items.iter().enumerate() {
+                numeric_leaves(child, &format!("{prefix}[{i}]"), out);
+            }
+        }
+        leaf if as_number(leaf).is_some() => out.push(prefix.to_string()),
+        _ => {}
     }
 }
 
@@ -334,5 +397,22 @@ mod tests {
         assert!(set_key(&mut doc, "x.y", toml::Value::Integer(1)).unwrap_err().contains("there: a, c"));
         assert!(set_key(&mut doc, "c.1.d", toml::Value::Integer(1)).unwrap_err().contains("outside the array `c`"));
         assert!(set_key(&mut doc, "a.b.z", toml::Value::Integer(1)).unwrap_err().contains("`a.b` is of type integer"));
+    }
+
+    #[test]
+    fn numbers_are_read_by_either_key_form_and_misses_list_the_numbers_near() {
+        let doc: toml::Value =
+            toml::from_str("[a]\nb = 1\ns = \"x\"\n[[c]]\nd = 2.5\nlaw = { k = 3.0, kind = \"hc\" }\n").unwrap();
+        assert_eq!(get_number(&doc, "c[0].d"), Some(2.5));
+        assert_eq!(get_number(&doc, "c.0.d"), Some(2.5));
+        assert_eq!(get_number(&doc, "c[0].law.k"), Some(3.0));
+        assert_eq!(get_number(&doc, "c[0].law.kind"), None);
+        let path = Path::new("s.toml");
+        let beside = not_a_number(&doc, "c[0].law.kind", path);
+        assert!(beside.ends_with("numeric keys near it: c[0].law.k"), "{beside}");
+        let under = not_a_number(&doc, "c[0].nope", path);
+        assert!(under.ends_with("numeric keys near it: c[0].d, c[0].law.k"), "{under}");
+        let text = not_a_number(&doc, "a.s", path);
+        assert!(text.ends_with("numeric keys near it: a.b"), "{text}");
     }
 }
