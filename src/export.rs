@@ -176,7 +176,8 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
 /// hand's grip on the string (force along and across the arm, moment).
 fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<Item = f64>)) {
     let stress = &s.stress;
-    if stress.width == 0 {
+    // A run the guard stopped may leave its last readings unevaluated: no columns then.
+    if stress.width == 0 || stress.steps() != s.t_s.len() {
         return;
     }
     let steps = stress.steps();

@@ -36,6 +36,7 @@ pub mod scene;
 pub mod seed;
 pub mod select;
 pub mod sensor;
+pub mod steel;
 pub mod stress;
 pub mod sweep;
 pub mod tuning;

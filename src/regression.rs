@@ -107,16 +107,13 @@ pub fn quantities_of(summary: &RunSummary) -> Vec<(String, f64)> {
 /// The sign-off's checked quantities, where the run has them: the peak stress and utilisation,
 /// the pivot's and the cylinder pin's peak force, the fatigue damage of the lift.
 fn sign_off_quantities(summary: &RunSummary) -> Vec<(String, f64)> {
-    let mut q = Vec::new();
-    if let Some(stress) = &summary.stress {
-        q.push(("stress.peak_stress_pa".into(), stress.peak_stress_pa));
-        q.extend(stress.utilisation.map(|u| ("stress.utilisation".into(), u)));
-    }
-    if let Some(pins) = &summary.pins {
-        q.push(("pins.pivot.peak_force_n".into(), pins.pivot.peak_force_n));
-        q.extend(pins.cylinder.as_ref().map(|c| ("pins.cylinder.peak_force_n".into(), c.peak_force_n)));
-    }
-    q.extend(summary.fatigue.as_ref().and_then(|f| f.damage_per_lift).map(|d| ("fatigue.damage_per_lift".into(), d)));
+    let Some(signed) = &summary.sign_off else { return Vec::new() };
+    let (stress, pins) = (&signed.stress, &signed.pins);
+    let mut q = vec![("stress.peak_stress_pa".into(), stress.peak_stress_pa)];
+    q.extend(stress.utilisation.map(|u| ("stress.utilisation".into(), u)));
+    q.push(("pins.pivot.peak_force_n".into(), pins.pivot.peak_force_n));
+    q.extend(pins.cylinder.as_ref().map(|c| ("pins.cylinder.peak_force_n".into(), c.peak_force_n)));
+    q.extend(signed.fatigue.damage_per_lift.map(|d| ("fatigue.damage_per_lift".into(), d)));
     q
 }
 

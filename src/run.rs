@@ -13,6 +13,7 @@ use crate::integrate::StepControl;
 use crate::model::{DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 use crate::sensor::probe::{ArmState, PointLoad};
+pub use crate::sensor::summary::{ChannelPeak, SensorSummary};
 use crate::sensor::{Sensor, SensorProbe};
 use crate::stress::StressProbe;
 
@@ -61,7 +62,7 @@ pub struct Series {
     pub layout: Option<SceneLayout>,
     /// Each sensor's two channels per step, in the model's sensor order.
     pub sensors: Vec<SensorSeries>,
-    /// Section forces along the arm and the pin loads per step (empty when not read).
+    /// Section forces along the arm and pin loads per step (empty without the sign-off).
     pub stress: crate::stress::StressSeries,
 }
 
@@ -113,8 +114,7 @@ pub struct RunOptions {
     pub capture_frames: bool,
     /// Rate of 3D frames without contact, Hz.
     pub frame_rate_hz: f64,
-    /// Recover the stresses along the arm and the pin loads every step, and sign the run off
-    /// (stress, fatigue, pins in the summary).
+    /// Sign the run off: stresses along the arm, pin loads and fatigue (`docs/sign-off.md`).
     pub sign_off: bool,
 }
 
@@ -227,60 +227,9 @@ pub struct RunSummary {
     /// Each sensor's peaks (left out of the file when the scenario has none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSummary>,
-    /// The stresses along the arm and their utilisation (`docs/sign-off.md`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stress: Option<crate::stress::StressSummary>,
-    /// The fatigue damage of the lift.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fatigue: Option<crate::stress::FatigueSummary>,
-    /// The peak loads on the pivot, the cylinder's pin and the hands.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub pins: Option<crate::stress::PinSummary>,
-}
-
-/// A sensor's peak readings.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SensorSummary {
-    /// Its name.
-    pub name: String,
-    /// Its kind, as a scenario names it.
-    pub kind: &'static str,
-    /// Its arm station, m (none for an encoder).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub station_m: Option<f64>,
-    /// Per channel: the largest |reading| and when.
-    pub channels: Vec<ChannelPeak>,
-}
-
-/// The largest |reading| of one channel.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ChannelPeak {
-    /// The channel with its unit (`axial_m_s2`, `moment_n_m`, ...).
-    pub channel: &'static str,
-    /// Largest |value|, in the channel's unit.
-    pub peak_abs: f64,
-    /// When, s.
-    pub peak_time_s: f64,
-}
-
-impl SensorSummary {
-    /// The peaks of one sensor's series at times `t_s`.
-    pub fn of(series: &SensorSeries, t_s: &[f64]) -> Self {
-        let kind = &series.sensor.kind;
-        let channels =
-            kind.channels()
-                .iter()
-                .enumerate()
-                .map(|(k, def)| {
-                    let (i, peak_abs) =
-                        series.values.iter().enumerate().fold((0, 0.0_f64), |best, (i, v)| {
-                            if v[k].abs() > best.1 { (i, v[k].abs()) } else { best }
-                        });
-                    ChannelPeak { channel: def.key, peak_abs, peak_time_s: t_s.get(i).copied().unwrap_or(0.0) }
-                })
-                .collect();
-        SensorSummary { name: series.sensor.name.clone(), kind: kind.name(), station_m: kind.station_m(), channels }
-    }
+    /// `stress`, `fatigue` and `pins` (`docs/sign-off.md`; left out of a run without them).
+    #[serde(flatten)]
+    pub sign_off: Option<crate::stress::SignOff>,
 }
 
 /// A drive's peaks against the lift joint's URDF limits. The rate is known before the run and a
@@ -394,79 +343,58 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
-    let mut stress = options.sign_off.then(|| {
-        let probe = StressProbe::new(model, &scene.arm.arm, &scene);
-        let hands: Vec<String> =
-            model.payload.string().map(|s| s.grips.iter().map(|g| g.hand.clone()).collect()).unwrap_or_default();
-        series.stress = probe.series(steps, &hands);
-        probe
-    });
-    let g = model.physics.gravity_m_s2;
+    let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];
     if options.capture_frames {
         series.layout = Some(scene.layout());
     }
     let mut keeper = Keeper::new(options, pads);
-    let mut signed_off = None;
     let started = Instant::now();
     let first = scene.arm.sample();
     let mut guard = DivergenceGuard::new(&first, gravity_span_j(model, &scene));
     record(&scene, &first, series, &mut trackers);
-    read_state(&scene, &first, g, (&probes, stress.as_mut()), series);
+    read_sensors(&scene, &probes, series);
+    read_string(&scene, model.physics.gravity_m_s2, series);
+    stress.iter_mut().for_each(|p| p.read(&scene, &first, model.physics.gravity_m_s2, &mut series.stress));
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
-    let mut step_loop = || -> Result<(), SceneError> {
-        // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
-        // be a step too short to take.
-        let sliver = 1e-6 * h;
-        // The free-motion step the error control proposes next (it restarts from `h` after contact).
-        let mut free_h = h;
-        while end - scene.arm.time_s() > sliver {
-            let remaining = end - scene.arm.time_s();
-            let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
-            steps += 1;
-            match &control {
-                Some(control) if scene.free_step_allowed(free_h) => {
-                    let (_, next) =
-                        scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
-                    free_h = next;
-                }
-                _ => {
-                    scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
-                    free_h = h;
-                }
+    // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
+    // be a step too short to take.
+    let sliver = 1e-6 * h;
+    // The free-motion step the error control proposes next (it restarts from `h` after contact).
+    let mut free_h = h;
+    while end - scene.arm.time_s() > sliver {
+        let remaining = end - scene.arm.time_s();
+        let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
+        steps += 1;
+        match &control {
+            Some(control) if scene.free_step_allowed(free_h) => {
+                let (_, next) =
+                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
+                free_h = next;
             }
-            let sample = scene.arm.sample();
-            guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
-            if let Some(what) = scene.fault() {
-                return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
+            _ => {
+                scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
+                free_h = h;
             }
-            record(&scene, &sample, series, &mut trackers);
-            read_state(&scene, &sample, g, (&probes, stress.as_mut()), series);
-            keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
         }
-        Ok(())
-    };
-    let looped = step_loop();
-    // The readings of the last steps are completed whether the run finished or not.
-    if let Some(probe) = &mut stress {
-        probe.finish(&mut series.stress);
+        let sample = scene.arm.sample();
+        guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
+        if let Some(what) = scene.fault() {
+            return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
+        }
+        record(&scene, &sample, series, &mut trackers);
+        read_sensors(&scene, &probes, series);
+        read_string(&scene, model.physics.gravity_m_s2, series);
+        stress.iter_mut().for_each(|p| p.read(&scene, &sample, model.physics.gravity_m_s2, &mut series.stress));
+        keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
-    looped?;
-    if stress.is_some() {
-        let readings =
-            crate::stress::Readings { series: &series.stress, t_s: &series.t_s, hub_angle_rad: &series.hub_angle_rad };
-        let signed = crate::stress::sign_off(model, &readings, &series.sensors, model.checks.stress_factor);
-        signed_off = Some(signed);
-    }
+    stress.iter_mut().for_each(|p| p.finish(&mut series.stress));
+    let sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
-    if let Some(signed) = signed_off {
-        summary.stress = Some(signed.stress);
-        summary.fatigue = Some(signed.fatigue);
-        summary.pins = Some(signed.pins);
-    }
     summary.model_reason = choice.reason;
+    summary.sign_off = sign_off;
     if let Some(choice) = string_choice {
         let (t, tip, stress) = (&series.t_s, &series.string_tip_deflection_m, &series.string_stress_pa);
         summary.string =
@@ -616,41 +544,24 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
 }
 
-/// What the sensors, the string's probe and the stress probe read at the scene's current state,
-/// whose sample is `sample`.
-fn read_state(
-    scene: &Scene,
-    sample: &ArmSample,
-    g: f64,
-    (probes, stress): (&[SensorProbe], Option<&mut StressProbe>),
-    series: &mut Series,
-) {
-    if probes.is_empty() && scene.string.is_none() && stress.is_none() {
+/// The held string's tip deflection and stress at the scene's current state.
+fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
+    let Some(probe) = &scene.string else { return };
+    let (hub, q, qd) = scene.arm.kinematics();
+    let qdd = scene.arm.elastic_accelerations();
+    let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
+    series.string_tip_deflection_m.push(reading.tip_deflection_m);
+    series.string_stress_pa.push(reading.max_bending_stress_pa);
+}
+
+/// Each sensor's reading at the scene's current state.
+fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
+    if probes.is_empty() {
         return;
     }
     let (hub, q, qd) = scene.arm.kinematics();
     let qdd = scene.arm.elastic_accelerations();
     let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
-    read_sensors(scene, probes, &state, series);
-    read_string(scene, &state, g, series);
-    if let Some(probe) = stress {
-        probe.read_at(scene, &state, sample, g, &mut series.stress);
-    }
-}
-
-/// The held string's tip deflection and stress at `state`.
-fn read_string(scene: &Scene, state: &ArmState, gravity_m_s2: f64, series: &mut Series) {
-    let Some(probe) = &scene.string else { return };
-    let reading = probe.read(state, gravity_m_s2);
-    series.string_tip_deflection_m.push(reading.tip_deflection_m);
-    series.string_stress_pa.push(reading.max_bending_stress_pa);
-}
-
-/// Each sensor's reading at `state`.
-fn read_sensors(scene: &Scene, probes: &[SensorProbe], state: &ArmState, series: &mut Series) {
-    if probes.is_empty() {
-        return;
-    }
     let loads: Vec<PointLoad> = scene
         .pairs()
         .filter(|p| p.force_n > 0.0 && p.side == crate::scene::Side::Arm)
@@ -661,7 +572,7 @@ fn read_sensors(scene: &Scene, probes: &[SensorProbe], state: &ArmState, series:
         })
         .collect();
     for (probe, out) in probes.iter().zip(&mut series.sensors) {
-        out.values.push(probe.read(state, &loads));
+        out.values.push(probe.read(&state, &loads));
     }
 }
 
@@ -755,8 +666,6 @@ fn summarize(
             max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
         }),
         string: None,
-        stress: None,
-        fatigue: None,
-        pins: None,
+        sign_off: None,
     })
 }

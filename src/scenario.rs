@@ -7,6 +7,7 @@
 //! (`robot`, a table drive's `file`) are relative to the scenario file.
 
 mod actuator;
+mod checks;
 mod clamp;
 mod drive;
 mod loop_advice;
@@ -22,13 +23,13 @@ use crate::arm::Fidelity;
 use crate::beam::{BeamModel, ConcentratedMass};
 use crate::integrate::IntegratorKind;
 use crate::model::{
-    Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, SignOffChecks,
-    TimeOptions,
+    Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
+pub use checks::ChecksSpec;
 pub use drive::{DriveSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
@@ -136,15 +137,6 @@ pub struct ScenarioSpec {
     /// scenarios without it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub checks: Option<ChecksSpec>,
-}
-
-/// `[checks]`: how the run's stresses are judged.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ChecksSpec {
-    /// Design factor on stress, applied to utilisation and to the fatigue ranges (default 1.0).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub stress_factor: Option<f64>,
 }
 
 /// What a scenario may change of the robot's arm.
@@ -398,30 +390,6 @@ impl Check<'_> {
             sensors.push(sensor);
         }
         Ok(sensors)
-    }
-
-    /// `[checks]`: a design factor > 0; utilisation, which the table asks for, needs a yield
-    /// strength on at least one of the robot's segments.
-    fn checks(&self, spec: Option<&ChecksSpec>, robot: &Robot) -> Result<SignOffChecks, ScenarioError> {
-        let Some(spec) = spec else { return Ok(SignOffChecks::default()) };
-        let stress_factor = spec.stress_factor.unwrap_or(1.0);
-        if !(stress_factor.is_finite() && stress_factor > 0.0) {
-            return Err(self.invalid(
-                "checks.stress_factor",
-                format!("{stress_factor}: allowed a finite number > 0 (1.0 by default)"),
-            ));
-        }
-        if robot.arm.segments.iter().all(|s| s.checks.yield_strength.is_none()) {
-            return Err(self.invalid(
-                "checks",
-                format!(
-                    "utilisation needs a yield strength, and no segment of {} has one: allowed yield_strength_pa (Pa) or steel ({}) on a <pipearm:segment>",
-                    robot.source.display(),
-                    crate::stress::steel::grade_names()
-                ),
-            ));
-        }
-        Ok(SignOffChecks { stress_factor, utilisation_asked: true })
     }
 
     /// The ranges serde cannot check, on the resolved model.

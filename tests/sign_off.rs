@@ -83,7 +83,7 @@ fn the_static_arm_held_at_an_angle_balances_as_its_free_body_by_hand() {
         let (weight, moment) = weight_by_hand(&model);
         // The pivot holds the weight: (0, W) in the world, (W sin θ, W cos θ) along and across
         // the arm. A static run stays at its start.
-        let pivot = &summary.pins.as_ref().unwrap().pivot;
+        let pivot = &summary.sign_off.as_ref().unwrap().pins.pivot;
         // (The histories are kept to seven digits.)
         assert!(pivot.world_n[0].abs() < 1e-6 * weight, "{string:?}: {:?}", pivot.world_n);
         assert!((pivot.world_n[1] / weight - 1.0).abs() < 1e-6, "{string:?}: {} vs {weight}", pivot.world_n[1]);
@@ -95,7 +95,7 @@ fn the_static_arm_held_at_an_angle_balances_as_its_free_body_by_hand() {
         assert!((n / (-weight * s) - 1.0).abs() < 1e-6, "{string:?}: N {n} vs {}", -weight * s);
         assert!((m / (moment * c) - 1.0).abs() < 3e-3, "{string:?}: M {m} vs {}", moment * c);
         let (area, inertia, half_depth) = box_section();
-        let stress = summary.stress.as_ref().unwrap();
+        let stress = &summary.sign_off.as_ref().unwrap().stress;
         let upper = -weight * s / area + moment * c * half_depth / inertia;
         let lower = -weight * s / area - moment * c * half_depth / inertia;
         assert!((stress.peak_stress_pa / upper.abs().max(lower.abs()) - 1.0).abs() < 3e-3);
@@ -134,7 +134,7 @@ fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
     let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
     let lever = pin[0] * unit[1] - pin[1] * unit[0];
     let rod = moment * c / lever;
-    let pins = summary.pins.as_ref().unwrap();
+    let pins = &summary.sign_off.as_ref().unwrap().pins;
     let cylinder = pins.cylinder.as_ref().unwrap();
     // The arm sags and the pin moves with it (deflection over the pin's lever, ~1e-3).
     assert!((cylinder.peak_force_n / rod - 1.0).abs() < 3e-3, "rod {} vs {rod}", cylinder.peak_force_n);

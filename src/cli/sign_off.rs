@@ -6,7 +6,9 @@ use pipearm::stress::summary::PinPeak;
 
 /// Prints the sign-off lines of a run's summary (none for a run without them).
 pub fn print(s: &RunSummary) {
-    if let Some(stress) = &s.stress {
+    let Some(signed) = &s.sign_off else { return };
+    let (stress, pins, fatigue) = (&signed.stress, &signed.pins, &signed.fatigue);
+    {
         println!(
             "peak stress         {:.1} MPa at {:.3} m, {} fibre, {:.3} s ({})",
             1e-6 * stress.peak_stress_pa,
@@ -28,7 +30,7 @@ pub fn print(s: &RunSummary) {
             (None, None) => {}
         }
     }
-    if let Some(pins) = &s.pins {
+    {
         print_pin("pivot pin", &pins.pivot);
         if let Some(cylinder) = &pins.cylinder {
             print_pin("cylinder pin", cylinder);
@@ -44,7 +46,7 @@ pub fn print(s: &RunSummary) {
             );
         }
     }
-    if let Some(fatigue) = &s.fatigue {
+    {
         match (fatigue.damage_per_lift, &fatigue.worst) {
             (Some(damage), Some(worst)) => {
                 let lifts = fatigue

@@ -27,10 +27,10 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 
+use super::SegmentChecks;
 use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
 use crate::actuator::{Cylinder, ServoMachine};
 use crate::beam::{BeamModel, Material, SectionShape};
-use crate::stress::SegmentChecks;
 
 /// A segment's optional sign-off attributes: yield strength or steel grade, detail or curve.
 const SEGMENT_CHECKS: [&str; 4] = ["yield_strength_pa", "steel", "detail", "curve"];
@@ -174,7 +174,8 @@ impl Context<'_> {
         key: &str,
         section: &SectionShape,
     ) -> Result<SegmentChecks, RobotError> {
-        use crate::stress::{YieldSource, YieldStrength, steel};
+        use super::{YieldSource, YieldStrength};
+        use crate::steel;
         let one_of = |a: &str, b: &str| -> Result<(), RobotError> {
             if node.attribute(a).is_some() && node.attribute(b).is_some() {
                 return Err(self.invalid(format!("{key}@{b}"), format!("give {a} or {b}, not both")));

@@ -33,10 +33,7 @@ pub fn envelope(
     }
     let reach = points.iter().map(|p| p.1.abs().max(p.2.abs())).fold(0.0, f64::max);
     let yield_reach = ends.iter().filter_map(|e| e.2).fold(0.0, f64::max);
-    // The yield lines are drawn when they are within reach: a stress of a few percent of yield
-    // would otherwise be a flat line at the axis.
-    let show_yield = yield_reach > 0.0 && yield_reach < 4.0 * reach;
-    let top = 1.1 * if show_yield { reach.max(yield_reach) } else { reach }.max(1e-3);
+    let top = 1.1 * reach.max(yield_reach).max(1e-3);
     crate::bench::register_font();
     let root = SVGBackend::new(path, (900, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
@@ -67,7 +64,7 @@ pub fn envelope(
         .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], orange.stroke_width(2)));
     let red = RGBColor(214, 39, 40);
     for (k, (from, to, fy)) in ends.iter().enumerate() {
-        if let (true, Some(fy)) = (show_yield, fy) {
+        if let Some(fy) = fy {
             for sign in [1.0, -1.0] {
                 let line = chart
                     .draw_series(LineSeries::new([(*from, sign * fy), (*to, sign * fy)], red.stroke_width(1)))

@@ -4,62 +4,25 @@
 //!
 //! - [`recovery`]: section forces, pivot and hand loads by force summation, every step.
 //! - [`fibres`]: σ = N/A ± M c/I at a section's upper and lower fibres.
-//! - [`steel`]: structural steels by name and their yield strength by thickness.
 //! - [`summary`]: the run's peaks, utilisation, pin loads and fatigue, from the series.
+//! - [`chart`]: the stress envelope along the arm, as an SVG.
 
+pub mod chart;
 pub mod fibres;
 pub mod forms;
 pub mod recovery;
-pub mod steel;
 pub mod summary;
 
 use crate::actuator::{Actuator, Cylinder, PinCoupling};
 use crate::arm::{ArmModel, ArmSample};
-use crate::fatigue::SnCurve;
 use crate::model::Model;
 use crate::scene::{Scene, Side as PairSide};
 use crate::sensor::probe::ArmState;
 
+pub use crate::robot::{SegmentChecks, YieldSource, YieldStrength};
 pub use fibres::{Fibre, Fibres};
 pub use recovery::{PointLoad, SectionRecovery, Station};
-pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off};
-
-/// How a segment's yield strength was given.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum YieldSource {
-    /// `yield_strength_pa` on the segment.
-    Given,
-    /// `steel` on the segment: a grade, read off its table at the section's thickness.
-    Grade(&'static steel::SteelGrade),
-}
-
-/// A segment's yield strength and where it comes from.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct YieldStrength {
-    /// Minimum yield strength, Pa.
-    pub strength_pa: f64,
-    /// Its source.
-    pub source: YieldSource,
-}
-
-impl YieldStrength {
-    /// How a summary states it: `yield_strength_pa` or `S355 (EN 10025-2, t = 12.5 mm)`.
-    pub fn describe(&self, thickness_m: f64) -> String {
-        match self.source {
-            YieldSource::Given => "yield_strength_pa".into(),
-            YieldSource::Grade(g) => format!("{} ({}, t = {} mm)", g.name, g.standard, thickness_m * 1e3),
-        }
-    }
-}
-
-/// What a segment is checked against: its yield strength and its welded detail's S–N curve.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct SegmentChecks {
-    /// Yield strength (`None`: no utilisation for this segment).
-    pub yield_strength: Option<YieldStrength>,
-    /// S–N curve of its worst detail (`None`: no fatigue for this segment).
-    pub sn_curve: Option<SnCurve>,
-}
+pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
 
 /// The per-step reading of the run's stresses and pin loads.
 #[derive(Debug, Clone)]
@@ -203,6 +166,15 @@ impl StressProbe {
         self.recovery.width() + CYLINDER_VALUES
     }
 
+    /// The probe of a run of `model` in `scene` of `steps` steps, its readings to go in `series`.
+    pub fn for_run(model: &Model, scene: &Scene, steps: usize, series: &mut StressSeries) -> Self {
+        let probe = StressProbe::new(model, &scene.arm.arm, scene);
+        let hands: Vec<String> =
+            model.payload.string().map(|s| s.grips.iter().map(|g| g.hand.clone()).collect()).unwrap_or_default();
+        *series = probe.series(steps, &hands);
+        probe
+    }
+
     /// An empty series of this probe's readings, with room for `steps` steps; `hands` names the
     /// string's hands in order.
     pub fn series(&self, steps: usize, hands: &[String]) -> StressSeries {
@@ -231,12 +203,7 @@ impl StressProbe {
     pub fn read(&mut self, scene: &Scene, sample: &ArmSample, g: f64, series: &mut StressSeries) {
         let (hub, q, qd) = scene.arm.kinematics();
         let qdd = scene.arm.elastic_accelerations();
-        self.read_at(scene, &ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, sample, g, series);
-    }
-
-    /// [`Self::read`] with the scene's state already at hand.
-    pub fn read_at(&mut self, scene: &Scene, state: &ArmState, sample: &ArmSample, g: f64, series: &mut StressSeries) {
-        let (hub, q, qd) = (state.hub, state.q, state.qd);
+        let state = &ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
         let (s, c) = hub.angle_rad.sin_cos();
         let to_hub = |[x, y]: [f64; 2]| [c * x + s * y, -s * x + c * y];
         self.on_arm.clear();

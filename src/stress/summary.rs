@@ -151,8 +151,8 @@ pub struct HandPeak {
     pub peak_moment_time_s: f64,
 }
 
-/// Everything at once.
-#[derive(Debug, Clone, PartialEq)]
+/// Everything at once: the summary's `stress`, `fatigue` and `pins`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SignOff {
     /// Stresses and utilisation.
     pub stress: StressSummary,
@@ -239,6 +239,12 @@ impl Readings<'_> {
     }
 }
 
+/// The sign-off of `model`'s run from its `series`, with the scenario's design factor.
+pub fn sign_off_run(model: &Model, series: &crate::run::Series) -> SignOff {
+    let readings = Readings { series: &series.stress, t_s: &series.t_s, hub_angle_rad: &series.hub_angle_rad };
+    sign_off(model, &readings, &series.sensors, model.checks.stress_factor)
+}
+
 /// The sign-off of `model`'s run from its `readings`, its sensors' series, with the design
 /// factor `stress_factor`.
 pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], stress_factor: f64) -> SignOff {
@@ -270,7 +276,7 @@ pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], st
         }
         let peak_step = readings.step_of_peak(peak.1, peak.2, peak.0);
         let checks = segment.checks;
-        let thickness = super::steel::nominal_thickness_m(&segment.section);
+        let thickness = crate::steel::nominal_thickness_m(&segment.section);
         let utilisation = checks.yield_strength.map(|y| stress_factor * peak.0 / y.strength_pa);
         if checks.yield_strength.is_none() {
             notes.push(format!(
