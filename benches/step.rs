@@ -2,7 +2,8 @@
 //! pads) with each contact method; and of the speed target's whole run: the default scene read,
 //! simulated for its 20 s and recorded, as `pipearm run` does it; and the actuated scenes'
 //! whole runs against the same scenes with the ideal drive (`-- actuated_run`); and the default
-//! scene with its string as `auto` models it against the string lumped (`-- string_run`).
+//! scene with its string as `auto` models it against the string lumped (`-- string_run`); and the
+//! default run with and without its sign-off (`-- sign_off`).
 //!
 //! `cargo bench --bench step` (one core: `taskset -c 0 cargo bench --bench step -- default_run`);
 //! the figures are quoted in docs/model.md, docs/accuracy.md and docs/performance.md.
@@ -179,5 +180,19 @@ fn run_and_record(scenario: &Scenario, out: &Path) {
     write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
 }
 
-criterion_group!(benches, arm_step, scene_step, default_run, detection_run, actuated_run, string_run);
+/// The default run in process with the sign-off (stress along the arm, pin loads, rainflow) and
+/// without it, the same build (`-- sign_off`; goal ≤ 1.15×, docs/sign-off.md).
+fn sign_off(c: &mut Criterion) {
+    use pipearm::run::{RunOptions, run_with};
+    let model = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model;
+    let mut group = c.benchmark_group("sign_off");
+    group.sample_size(40);
+    for (label, sign_off) in [("with", true), ("without", false)] {
+        let options = RunOptions { sign_off, ..RunOptions::default() };
+        group.bench_function(label, |b| b.iter(|| run_with(&model, &options).unwrap()));
+    }
+    group.finish();
+}
+
+criterion_group!(benches, arm_step, scene_step, default_run, detection_run, actuated_run, string_run, sign_off);
 criterion_main!(benches);

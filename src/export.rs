@@ -24,6 +24,10 @@
 //! | `contact_force.<pad>[N]` | contact force, one column per pad |
 //! | `string_slip[m]`, `jaw_sinking[m]` | friction clamp only |
 //! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |
+//! | `stress.worst[Pa]` | σ at the section and fibre of the run's peak stress ([`crate::stress`]) |
+//! | `pivot.force.x[N]`, `pivot.force.y[N]` | the pivot's force on the arm, world |
+//! | `cylinder_pin.force.x[N]`, `cylinder_pin.force.y[N]` | the rod's force on the arm's pin, world (with a cylinder) |
+//! | `grip.<hand>.force.axial[N]`, `.force.transverse[N]`, `.moment[N*m]` | each hand's grip on a flexible string, arm frame |
 //! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
 //! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
 //!
@@ -157,6 +161,7 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
             push(header, &mut sensor.values.iter().map(|v| v[k]));
         }
     }
+    sign_off_columns(s, &mut push);
     for (k, kind) in ["kinetic", "strain", "gravity"].into_iter().enumerate() {
         push(format!("energy.{kind}[J]"), &mut s.energies_j.iter().map(|e| e[k]));
     }
@@ -164,6 +169,47 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
         push(format!("modal.q{}[m*kg^0.5]", i + 1), &mut s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied());
     }
     Ok(out)
+}
+
+/// The sign-off's columns (`docs/sign-off.md`), when the run read them: σ at the section and fibre
+/// of the run's peak stress, the pivot's and the cylinder pin's force on the arm (world), each
+/// hand's grip on the string (force along and across the arm, moment).
+fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<Item = f64>)) {
+    let stress = &s.stress;
+    // A run the guard stopped may leave its last readings unevaluated: no columns then.
+    if stress.width == 0 || stress.steps() != s.t_s.len() {
+        return;
+    }
+    let steps = stress.steps();
+    let value = |k: usize, at: usize| f64::from(stress.values[k * stress.width + at]);
+    let worst = stress
+        .extremes
+        .iter()
+        .enumerate()
+        .flat_map(|(i, e)| crate::stress::Fibre::BOTH.into_iter().zip(e).map(move |(f, e)| (i, f, e.peak_abs())))
+        .max_by(|a, b| a.2.total_cmp(&b.2));
+    if let Some((i, fibre, _)) = worst {
+        push("stress.worst[Pa]".into(), &mut (0..steps).map(|k| stress.stress_pa(i, fibre, k)));
+    }
+    let world = |k: usize, at: usize| {
+        let (sn, cs) = s.hub_angle_rad[k].sin_cos();
+        let (x, y) = (value(k, at), value(k, at + 1));
+        [cs * x - sn * y, sn * x + cs * y]
+    };
+    for (a, axis) in ["x", "y"].into_iter().enumerate() {
+        push(format!("pivot.force.{axis}[N]"), &mut (0..steps).map(|k| world(k, stress.pivot_index)[a]));
+    }
+    if let Some(at) = stress.cylinder_index {
+        for (a, axis) in ["x", "y"].into_iter().enumerate() {
+            push(format!("cylinder_pin.force.{axis}[N]"), &mut (0..steps).map(|k| value(k, at + a)));
+        }
+    }
+    for (hand, at) in &stress.hands {
+        // The hand's grip on the string: minus the string's load on the hand.
+        for (k, name) in ["force.axial[N]", "force.transverse[N]", "moment[N*m]"].into_iter().enumerate() {
+            push(format!("grip.{hand}.{name}"), &mut (0..steps).map(|step| -value(step, at + k)));
+        }
+    }
 }
 
 /// Writes the steps and decimated tables of `series` (run `name`) as CSV and Parquet into

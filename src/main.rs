@@ -346,7 +346,7 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
             .with_context(|| format!("removing {}", stale.display()))?;
     }
     if let Some(out) = outputs.tables {
-        write_tables(out, &model.name, &series, model)?;
+        write_tables(out, &model.name, (&series, &summary), model)?;
     }
     // In-process, one thread for the simulation: scenario read, model built, stepped, recorded.
     let total_s = started.elapsed().as_secs_f64();
@@ -385,7 +385,12 @@ fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded) {
 }
 
 /// `run --csv`: the run's series as CSV and Parquet tables in `out`.
-fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &pipearm::model::Model) -> Result<()> {
+fn write_tables(
+    out: &Path,
+    name: &str,
+    (series, summary): (&pipearm::run::Series, &RunSummary),
+    model: &pipearm::model::Model,
+) -> Result<()> {
     let started = std::time::Instant::now();
     let pads = model.pair_series_names();
     let written = pipearm::export::write_tables(out, name, series, &pads)?;
@@ -397,6 +402,19 @@ fn write_tables(out: &Path, name: &str, series: &pipearm::run::Series, model: &p
         out.join(format!("{name}.decimated.{{csv,parquet}}")).display(),
         started.elapsed().as_secs_f64()
     );
+    if let Some(signed) = &summary.sign_off {
+        let svg = out.join(format!("{name}.stress.svg"));
+        let caption = format!("{name}: stress envelope along the arm");
+        pipearm::stress::chart::envelope(
+            &svg,
+            &caption,
+            &series.stress,
+            &model.robot.arm.segments,
+            signed.stress.stress_factor,
+        )
+        .map_err(|e| anyhow::anyhow!("{}: {e}", svg.display()))?;
+        println!("wrote chart         {}", svg.display());
+    }
     Ok(())
 }
 
@@ -606,6 +624,7 @@ fn print_summary(path: &Path, s: &RunSummary) {
             );
         }
     }
+    cli::sign_off::print(s);
 }
 
 /// The drive's peaks against the lift joint's URDF limits; a warning if the torque exceeded its

@@ -49,6 +49,23 @@ pub struct Model {
     pub time: TimeOptions,
     /// Sensors read at every step ([`crate::sensor`]).
     pub sensors: Vec<crate::sensor::Sensor>,
+    /// How the run's stresses are judged ([`crate::stress`]).
+    pub checks: SignOffChecks,
+}
+
+/// How the run's stresses are judged: the scenario's `[checks]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SignOffChecks {
+    /// Design factor on stress, applied to utilisation and to the fatigue ranges.
+    pub stress_factor: f64,
+    /// Whether the scenario asks for utilisation (it has a `[checks]` table).
+    pub utilisation_asked: bool,
+}
+
+impl Default for SignOffChecks {
+    fn default() -> Self {
+        SignOffChecks { stress_factor: 1.0, utilisation_asked: false }
+    }
 }
 
 impl Model {

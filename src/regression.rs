@@ -75,6 +75,9 @@ pub fn default_tolerance(name: &str) -> (f64, f64) {
         "frequency_hz" => (0.01, 0.0),
         "log_decrement" => (0.10, 0.002),
         "peak_drive_torque_n_m" => (0.02, 1.0),
+        "peak_stress_pa" => (0.02, 1e4),
+        "utilisation" => (0.02, 1e-4),
+        "damage_per_lift" => (0.10, 1e-15),
         _ => (0.02, 0.0),
     }
 }
@@ -97,6 +100,20 @@ pub fn quantities_of(summary: &RunSummary) -> Vec<(String, f64)> {
         ("peak_drive_torque_n_m", summary.peak_drive_torque_n_m),
     ];
     q.extend(optional.into_iter().filter(|(_, v)| v.is_finite()).map(|(n, v)| (n.to_string(), v)));
+    q.extend(sign_off_quantities(summary));
+    q
+}
+
+/// The sign-off's checked quantities, where the run has them: the peak stress and utilisation,
+/// the pivot's and the cylinder pin's peak force, the fatigue damage of the lift.
+fn sign_off_quantities(summary: &RunSummary) -> Vec<(String, f64)> {
+    let Some(signed) = &summary.sign_off else { return Vec::new() };
+    let (stress, pins) = (&signed.stress, &signed.pins);
+    let mut q = vec![("stress.peak_stress_pa".into(), stress.peak_stress_pa)];
+    q.extend(stress.utilisation.map(|u| ("stress.utilisation".into(), u)));
+    q.push(("pins.pivot.peak_force_n".into(), pins.pivot.peak_force_n));
+    q.extend(pins.cylinder.as_ref().map(|c| ("pins.cylinder.peak_force_n".into(), c.peak_force_n)));
+    q.extend(signed.fatigue.damage_per_lift.map(|d| ("fatigue.damage_per_lift".into(), d)));
     q
 }
 

@@ -13,7 +13,9 @@ use crate::integrate::StepControl;
 use crate::model::{DEFAULT_TOLERANCE_M, Model};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
 use crate::sensor::probe::{ArmState, PointLoad};
+pub use crate::sensor::summary::{ChannelPeak, SensorSummary};
 use crate::sensor::{Sensor, SensorProbe};
+use crate::stress::StressProbe;
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -60,6 +62,8 @@ pub struct Series {
     pub layout: Option<SceneLayout>,
     /// Each sensor's two channels per step, in the model's sensor order.
     pub sensors: Vec<SensorSeries>,
+    /// Section forces along the arm and pin loads per step (empty without the sign-off).
+    pub stress: crate::stress::StressSeries,
 }
 
 /// One sensor's readings per step.
@@ -110,11 +114,13 @@ pub struct RunOptions {
     pub capture_frames: bool,
     /// Rate of 3D frames without contact, Hz.
     pub frame_rate_hz: f64,
+    /// Sign the run off: stresses along the arm, pin loads and fatigue (`docs/sign-off.md`).
+    pub sign_off: bool,
 }
 
 impl Default for RunOptions {
     fn default() -> Self {
-        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false, frame_rate_hz: 10.0 }
+        RunOptions { fidelity: None, record_rate_hz: 25.0, capture_frames: false, frame_rate_hz: 10.0, sign_off: true }
     }
 }
 
@@ -221,51 +227,9 @@ pub struct RunSummary {
     /// Each sensor's peaks (left out of the file when the scenario has none).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSummary>,
-}
-
-/// A sensor's peak readings.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SensorSummary {
-    /// Its name.
-    pub name: String,
-    /// Its kind, as a scenario names it.
-    pub kind: &'static str,
-    /// Its arm station, m (none for an encoder).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub station_m: Option<f64>,
-    /// Per channel: the largest |reading| and when.
-    pub channels: Vec<ChannelPeak>,
-}
-
-/// The largest |reading| of one channel.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ChannelPeak {
-    /// The channel with its unit (`axial_m_s2`, `moment_n_m`, ...).
-    pub channel: &'static str,
-    /// Largest |value|, in the channel's unit.
-    pub peak_abs: f64,
-    /// When, s.
-    pub peak_time_s: f64,
-}
-
-impl SensorSummary {
-    /// The peaks of one sensor's series at times `t_s`.
-    pub fn of(series: &SensorSeries, t_s: &[f64]) -> Self {
-        let kind = &series.sensor.kind;
-        let channels =
-            kind.channels()
-                .iter()
-                .enumerate()
-                .map(|(k, def)| {
-                    let (i, peak_abs) =
-                        series.values.iter().enumerate().fold((0, 0.0_f64), |best, (i, v)| {
-                            if v[k].abs() > best.1 { (i, v[k].abs()) } else { best }
-                        });
-                    ChannelPeak { channel: def.key, peak_abs, peak_time_s: t_s.get(i).copied().unwrap_or(0.0) }
-                })
-                .collect();
-        SensorSummary { name: series.sensor.name.clone(), kind: kind.name(), station_m: kind.station_m(), channels }
-    }
+    /// `stress`, `fatigue` and `pins` (`docs/sign-off.md`; left out of a run without them).
+    #[serde(flatten)]
+    pub sign_off: Option<crate::stress::SignOff>,
 }
 
 /// A drive's peaks against the lift joint's URDF limits. The rate is known before the run and a
@@ -379,6 +343,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
+    let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];
     if options.capture_frames {
         series.layout = Some(scene.layout());
@@ -390,6 +355,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     record(&scene, &first, series, &mut trackers);
     read_sensors(&scene, &probes, series);
     read_string(&scene, model.physics.gravity_m_s2, series);
+    stress.iter_mut().for_each(|p| p.read(&scene, &first, model.physics.gravity_m_s2, &mut series.stress));
     keeper.keep(&scene, series, options.capture_frames, false);
     let mut steps = 0;
     // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
@@ -420,11 +386,15 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         record(&scene, &sample, series, &mut trackers);
         read_sensors(&scene, &probes, series);
         read_string(&scene, model.physics.gravity_m_s2, series);
+        stress.iter_mut().for_each(|p| p.read(&scene, &sample, model.physics.gravity_m_s2, &mut series.stress));
         keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
     }
+    stress.iter_mut().for_each(|p| p.finish(&mut series.stress));
+    let sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
     summary.model_reason = choice.reason;
+    summary.sign_off = sign_off;
     if let Some(choice) = string_choice {
         let (t, tip, stress) = (&series.t_s, &series.string_tip_deflection_m, &series.string_stress_pa);
         summary.string =
@@ -696,5 +666,6 @@ fn summarize(
             max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
         }),
         string: None,
+        sign_off: None,
     })
 }

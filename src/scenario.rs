@@ -8,6 +8,7 @@
 
 mod actuator;
 mod capacity;
+mod checks;
 mod clamp;
 mod drive;
 mod loop_advice;
@@ -29,6 +30,7 @@ use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{Sensor, SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
+pub use checks::ChecksSpec;
 pub use drive::{DriveSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
@@ -131,6 +133,11 @@ pub struct ScenarioSpec {
     /// Sensors read at every step.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSpec>,
+    /// The sign-off's settings (`docs/sign-off.md`); its presence asks for utilisation. Left out
+    /// of the canonical form when absent, so that a sweep's case hashes do not change for
+    /// scenarios without it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub checks: Option<ChecksSpec>,
 }
 
 /// What a scenario may change of the robot's arm.
@@ -324,6 +331,7 @@ impl Scenario {
         let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
         let names: Vec<&str> = spec.dampeners.iter().map(|d| d.name.as_str()).collect();
         let structures = check.structures(&spec.structures, &names, &spec.contact)?;
+        let checks = check.checks(spec.checks.as_ref(), &robot)?;
         let mut model = Model {
             name: spec.name.clone(),
             robot,
@@ -337,6 +345,7 @@ impl Scenario {
             integrator: spec.integrator,
             time: spec.time,
             sensors,
+            checks,
         };
         if let Some(request) = spec.drive.shaping() {
             (model.drive.motion, model.drive.shaper_tuning) = check.shaped(&spec.drive, request, &model)?;

@@ -412,3 +412,22 @@ fn a_bad_structure_is_named() {
         refused_run("structure-size", with(guide("{ kind = \"box\", size_m = [0.2, -0.6, 0.3] }", clear, law)), same);
     assert!(e.contains("structures[0].shape.size_m") && e.contains("0 < size"), "{e}");
 }
+
+#[test]
+fn sign_off_keys_are_checked_naming_the_key() {
+    let no_yield = |t: String| t.replace(" steel=\"S355\"", "");
+    let m = refused_run("checks-no-yield", with("\n[checks]\nstress_factor = 1.0\n"), no_yield);
+    assert!(m.contains("`checks`") && m.contains("yield_strength_pa") && m.contains("S355"), "{m}");
+    let m = refused_run("checks-factor", with("\n[checks]\nstress_factor = -1.5\n"), same);
+    assert!(m.contains("checks.stress_factor") && m.contains("> 0"), "{m}");
+    let m = refused_run("detail", same, |t| t.replace("detail=\"71\"", "detail=\"70\""));
+    assert!(m.contains("@detail") && m.contains("\"71\"") && m.contains("\"36\""), "{m}");
+    let m = refused_run("curve", same, |t| t.replace("detail=\"71\"", "curve=\"dnv-x\""));
+    assert!(m.contains("@curve") && m.contains("\"dnv-d\"") && m.contains("\"dnv-w3\""), "{m}");
+    let m = refused_run("steel", same, |t| t.replace("steel=\"S355\"", "steel=\"S420\""));
+    assert!(m.contains("@steel") && m.contains("S235, S275, S355, S460, S690"), "{m}");
+    let m = refused_run("yield-and-steel", same, |t| {
+        t.replace("steel=\"S355\"", "steel=\"S355\" yield_strength_pa=\"355e6\"")
+    });
+    assert!(m.contains("@steel") && m.contains("not both"), "{m}");
+}

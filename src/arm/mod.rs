@@ -37,6 +37,7 @@ use crate::drive::DriveError;
 use crate::integrate::IntegrateError;
 
 pub use contact::{ArmContact, ContactState, PointContact};
+pub(crate) use dynamics::ArmPin;
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
 pub use linear::LinearSystem;
 pub use sim::{ArmSample, ArmSimulation, Energies};

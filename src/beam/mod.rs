@@ -474,6 +474,15 @@ impl BeamModel {
         [u, v, slope]
     }
 
+    /// The element holding station `x_m` (clamped into [0, L]), its global DOFs (`None` at the
+    /// clamped hub) and its shape rows there: a point's rows without forming them over every DOF.
+    pub fn point_shape(&self, x_m: f64) -> ([Option<usize>; ELEMENT_DOFS], ShapeRows) {
+        let x = x_m.clamp(0.0, self.length_m());
+        let e = self.elements.iter().position(|el| x <= el.x0_m + el.length_m).unwrap_or(self.elements.len() - 1);
+        let el = &self.elements[e];
+        (element_dofs(e), shape_rows((x - el.x0_m) / el.length_m, el.length_m))
+    }
+
     /// Static displacement under a load vector `f` (N and N·m on the DOFs), clamped hub.
     pub fn static_displacement(&self, load: &DVector<f64>) -> Result<DVector<f64>, BeamError> {
         let factor = self.stiffness_factor.get_or_init(|| self.stiffness.clone().cholesky());

@@ -11,4 +11,5 @@ pub mod overrides;
 pub mod pipes;
 pub mod project;
 pub mod seed;
+pub mod sign_off;
 pub mod sweep;

@@ -13,6 +13,8 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
+use crate::fatigue::SnCurve;
+
 pub use pipes::{
     ConnectionPiece, CustomPipeSpec, Joints, PIPE_CATALOGUE, Pipe, PipeSize, PipeString, Product, Range, StringSpec,
     find_row, pipe_size,
@@ -44,6 +46,8 @@ pub struct ArmSegment {
     pub section: SectionShape,
     /// Material.
     pub material: Material,
+    /// Its yield strength and welded detail, for the sign-off ([`crate::stress`]).
+    pub checks: SegmentChecks,
 }
 
 /// The flexible link's parameters (`<pipearm:flexible>` in the URDF).
@@ -236,4 +240,41 @@ impl Robot {
         let mean = |f: fn(&CarriedBody) -> f64| jaws.iter().map(|j| f(j)).sum::<f64>() / jaws.len() as f64;
         [mean(|b| b.lateral_m), mean(|b| b.normal_offset_m)]
     }
+}
+
+/// How a segment's yield strength was given.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum YieldSource {
+    /// `yield_strength_pa` on the segment.
+    Given,
+    /// `steel` on the segment: a grade, read off its table at the section's thickness.
+    Grade(&'static crate::steel::SteelGrade),
+}
+
+/// A segment's yield strength and where it comes from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct YieldStrength {
+    /// Minimum yield strength, Pa.
+    pub strength_pa: f64,
+    /// Its source.
+    pub source: YieldSource,
+}
+
+impl YieldStrength {
+    /// How a summary states it: `yield_strength_pa` or `S355 (EN 10025-2, t = 12.5 mm)`.
+    pub fn describe(&self, thickness_m: f64) -> String {
+        match self.source {
+            YieldSource::Given => "yield_strength_pa".into(),
+            YieldSource::Grade(g) => format!("{} ({}, t = {} mm)", g.name, g.standard, thickness_m * 1e3),
+        }
+    }
+}
+
+/// What a segment is checked against: its yield strength and its welded detail's S–N curve.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SegmentChecks {
+    /// Yield strength (`None`: no utilisation for this segment).
+    pub yield_strength: Option<YieldStrength>,
+    /// S–N curve of its worst detail (`None`: no fatigue for this segment).
+    pub sn_curve: Option<SnCurve>,
 }

@@ -27,9 +27,13 @@ use std::path::Path;
 
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 
+use super::SegmentChecks;
 use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
 use crate::actuator::{Cylinder, ServoMachine};
 use crate::beam::{BeamModel, Material, SectionShape};
+
+/// A segment's optional sign-off attributes: yield strength or steel grade, detail or curve.
+const SEGMENT_CHECKS: [&str; 4] = ["yield_strength_pa", "steel", "detail", "curve"];
 
 /// The arm's section shapes, as a URDF names them.
 const SECTIONS: &str = "solid-circle, solid-rectangle, hollow-rectangle, tube";
@@ -142,6 +146,7 @@ impl Context<'_> {
         };
         let mut allowed = vec!["section", "length_m", "youngs_modulus_pa", "density_kg_m3"];
         allowed.extend_from_slice(dims);
+        allowed.extend_from_slice(&SEGMENT_CHECKS);
         self.only_attributes(node, key, &allowed)?;
         let n = |name| self.number(node, key, name);
         let section = match kind {
@@ -153,11 +158,67 @@ impl Context<'_> {
             _ => SectionShape::Tube { outer_diameter_m: n("outer_diameter_m")?, wall_m: n("wall_m")? },
         };
         let material = Material { youngs_modulus_pa: n("youngs_modulus_pa")?, density_kg_m3: n("density_kg_m3")? };
-        let segment = ArmSegment { length_m: n("length_m")?, section, material };
+        let checks = self.segment_checks(node, key, &section)?;
+        let segment = ArmSegment { length_m: n("length_m")?, section, material, checks };
         crate::beam::Segment::from_shape(segment.length_m, &section, &material)
             .and_then(|s| crate::beam::BeamSpec::uniform(s, 1).validate())
             .map_err(|e| self.invalid(key, e.to_string()))?;
         Ok(segment)
+    }
+
+    /// A segment's yield strength (`yield_strength_pa`, or `steel` naming a grade) and S–N
+    /// curve (`detail`, an EN 1993-1-9 category, or `curve`, a DNVGL-RP-C203 curve in air).
+    fn segment_checks(
+        &self,
+        node: &roxmltree::Node<'_, '_>,
+        key: &str,
+        section: &SectionShape,
+    ) -> Result<SegmentChecks, RobotError> {
+        use super::{YieldSource, YieldStrength};
+        use crate::steel;
+        let one_of = |a: &str, b: &str| -> Result<(), RobotError> {
+            if node.attribute(a).is_some() && node.attribute(b).is_some() {
+                return Err(self.invalid(format!("{key}@{b}"), format!("give {a} or {b}, not both")));
+            }
+            Ok(())
+        };
+        one_of("yield_strength_pa", "steel")?;
+        one_of("detail", "curve")?;
+        let yield_strength = if node.attribute("yield_strength_pa").is_some() {
+            let fy = self.number(node, key, "yield_strength_pa")?;
+            if fy <= 0.0 {
+                return Err(self.invalid(format!("{key}@yield_strength_pa"), format!("{fy}: allowed > 0")));
+            }
+            Some(YieldStrength { strength_pa: fy, source: YieldSource::Given })
+        } else if let Some(name) = node.attribute("steel") {
+            let grade = steel::grade(name).ok_or_else(|| {
+                self.invalid(format!("{key}@steel"), format!("`{name}`: allowed {}", steel::grade_names()))
+            })?;
+            let t = steel::nominal_thickness_m(section);
+            let fy = grade.yield_strength_pa(t).ok_or_else(|| {
+                let max_mm = grade.max_thickness_m() * 1e3;
+                let message = format!(
+                    "{} is tabled up to {max_mm} mm thick; this section is {} mm: give yield_strength_pa",
+                    grade.name,
+                    t * 1e3
+                );
+                self.invalid(format!("{key}@steel"), message)
+            })?;
+            Some(YieldStrength { strength_pa: fy, source: YieldSource::Grade(grade) })
+        } else {
+            None
+        };
+        let sn_curve = match (node.attribute("detail"), node.attribute("curve")) {
+            (Some(detail), _) => Some(
+                crate::fatigue::SnCurve::en1993(detail)
+                    .map_err(|e| self.invalid(format!("{key}@detail"), e.to_string()))?,
+            ),
+            (None, Some(curve)) => Some(
+                crate::fatigue::SnCurve::dnv(curve).map_err(|e| self.invalid(format!("{key}@curve"), e.to_string()))?,
+            ),
+            (None, None) => None,
+        };
+        Ok(SegmentChecks { yield_strength, sn_curve })
     }
 
     /// Rejects attributes outside `allowed` (a typo must not silently become a default).

@@ -16,6 +16,7 @@
 
 pub mod probe;
 pub mod string;
+pub mod summary;
 
 use serde::{Deserialize, Serialize};
 

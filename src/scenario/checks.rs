@@ -1,0 +1,42 @@
+//! `[checks]`: how a run's stresses are judged ([`crate::stress`], `docs/sign-off.md`).
+
+use serde::{Deserialize, Serialize};
+
+use super::{Check, ScenarioError};
+use crate::model::SignOffChecks;
+use crate::robot::Robot;
+
+/// `[checks]`: how the run's stresses are judged.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ChecksSpec {
+    /// Design factor on stress, applied to utilisation and to the fatigue ranges (default 1.0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stress_factor: Option<f64>,
+}
+
+impl Check<'_> {
+    /// `[checks]`: a design factor > 0; utilisation, which the table asks for, needs a yield
+    /// strength on at least one of the robot's segments.
+    pub(super) fn checks(&self, spec: Option<&ChecksSpec>, robot: &Robot) -> Result<SignOffChecks, ScenarioError> {
+        let Some(spec) = spec else { return Ok(SignOffChecks::default()) };
+        let stress_factor = spec.stress_factor.unwrap_or(1.0);
+        if !(stress_factor.is_finite() && stress_factor > 0.0) {
+            return Err(self.invalid(
+                "checks.stress_factor",
+                format!("{stress_factor}: allowed a finite number > 0 (1.0 by default)"),
+            ));
+        }
+        if robot.arm.segments.iter().all(|s| s.checks.yield_strength.is_none()) {
+            return Err(self.invalid(
+                "checks",
+                format!(
+                    "utilisation needs a yield strength, and no segment of {} has one: allowed yield_strength_pa (Pa) or steel ({}) on a <pipearm:segment>",
+                    robot.source.display(),
+                    crate::steel::grade_names()
+                ),
+            ));
+        }
+        Ok(SignOffChecks { stress_factor, utilisation_asked: true })
+    }
+}

@@ -1,0 +1,263 @@
+//! What a run does to the machine: the normal stress at the outer fibres of every section along
+//! the arm, its utilisation against the steel's yield, the loads on the pivot, the cylinder's pin
+//! and the hands, and the fatigue damage of one lift (`docs/sign-off.md`).
+//!
+//! - [`recovery`]: section forces, pivot and hand loads by force summation, every step.
+//! - [`fibres`]: σ = N/A ± M c/I at a section's upper and lower fibres.
+//! - [`summary`]: the run's peaks, utilisation, pin loads and fatigue, from the series.
+//! - [`chart`]: the stress envelope along the arm, as an SVG.
+
+pub mod chart;
+pub mod fibres;
+pub mod forms;
+pub mod recovery;
+pub mod summary;
+
+use crate::actuator::{Actuator, Cylinder, PinCoupling};
+use crate::arm::{ArmModel, ArmSample};
+use crate::model::Model;
+use crate::scene::{Scene, Side as PairSide};
+use crate::sensor::probe::ArmState;
+
+pub use crate::robot::{SegmentChecks, YieldSource, YieldStrength};
+pub use fibres::{Fibre, Fibres};
+pub use recovery::{PointLoad, SectionRecovery, Station};
+pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
+
+/// The per-step reading of the run's stresses and pin loads.
+#[derive(Debug, Clone)]
+pub struct StressProbe {
+    /// The recovery of section forces.
+    pub recovery: SectionRecovery,
+    /// The outer fibres of each station's section.
+    pub fibres: Vec<Fibres>,
+    cylinder: Option<(Cylinder, PinCoupling)>,
+    scratch: recovery::Scratch,
+    on_arm: Vec<PointLoad>,
+    on_string: Vec<PointLoad>,
+    /// The readings of the steps whose linear part is not evaluated yet.
+    pending: Vec<f64>,
+}
+
+/// Values per step after the recovery's: the cylinder pin's force on the arm, world X, Y, N.
+pub const CYLINDER_VALUES: usize = 2;
+
+/// A station of a run's stress series: where, on which segment, and its fibres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SeriesStation {
+    /// Station along the arm, m.
+    pub station_m: f64,
+    /// Its segment.
+    pub segment: usize,
+    /// Its section's fibres.
+    pub fibres: Fibres,
+}
+
+/// A run's stress and pin readings per step, and what each value is.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct StressSeries {
+    /// `width` values per step, one step after another: per station (axial force N, bending
+    /// moment N·m), the pivot's force on the arm (hub frame, N), per hand of a flexible string
+    /// its load on the hand (hub frame x, y, N; moment, N·m), the cylinder pin's force (world, N).
+    /// Single precision (seven digits): a run's histories at every section are its largest
+    /// series, and the extremes are taken in double precision as they are read.
+    pub values: Vec<f32>,
+    /// Values per step.
+    pub width: usize,
+    /// The stations, hub outwards.
+    pub stations: Vec<SeriesStation>,
+    /// Where the pivot's force starts in a step's values.
+    pub pivot_index: usize,
+    /// Each hand of a flexible string and where its load starts.
+    pub hands: Vec<(String, usize)>,
+    /// Where the cylinder pin's force starts (`None` without a cylinder).
+    pub cylinder_index: Option<usize>,
+    /// Per station and fibre (upper, lower), the largest and smallest σ over the steps read, Pa.
+    pub extremes: Vec<[Extremes; 2]>,
+}
+
+/// The largest and smallest σ at a station's fibre, Pa.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremes {
+    /// Largest σ.
+    pub max: f64,
+    /// Smallest σ.
+    pub min: f64,
+}
+
+impl Extremes {
+    /// None yet.
+    pub const NONE: Extremes = Extremes { max: f64::MIN, min: f64::MAX };
+
+    /// The larger of |max| and |min|.
+    pub fn peak_abs(&self) -> f64 {
+        self.max.abs().max(self.min.abs())
+    }
+}
+
+impl StressSeries {
+    /// Steps read.
+    pub fn steps(&self) -> usize {
+        self.values.len() / self.width.max(1)
+    }
+
+    /// Appends the readings `steps` (`width` values a step), taking their σ into `extremes`.
+    fn append(&mut self, steps: &[f64]) {
+        for step in steps.chunks_exact(self.width) {
+            for ((station, forces), e) in self.stations.iter().zip(step.chunks_exact(2)).zip(self.extremes.iter_mut()) {
+                let axial = forces[0] * station.fibres.per_axial_force_per_m2;
+                let bending = forces[1] * station.fibres.per_moment_per_m3;
+                for (e, s) in e.iter_mut().zip([axial + bending, axial - bending]) {
+                    if s > e.max {
+                        e.max = s;
+                    }
+                    if s < e.min {
+                        e.min = s;
+                    }
+                }
+            }
+        }
+        self.values.extend(steps.iter().map(|v| *v as f32));
+    }
+
+    /// σ at station `i`, `fibre`, step `k`, Pa.
+    pub fn stress_pa(&self, i: usize, fibre: Fibre, k: usize) -> f64 {
+        let at = k * self.width + 2 * i;
+        self.stations[i].fibres.stress_pa(fibre, self.values[at].into(), self.values[at + 1].into())
+    }
+}
+
+impl StressProbe {
+    /// The probe on `arm`, the run's model of `model`'s arm; `scene` gives the cylinder's pin.
+    pub fn new(model: &Model, arm: &ArmModel, scene: &Scene) -> Self {
+        let segments = &model.robot.arm.segments;
+        let mut end = 0.0;
+        let segment_ends: Vec<f64> = segments
+            .iter()
+            .map(|s| {
+                end += s.length_m;
+                end
+            })
+            .collect();
+        let cylinder = scene.arm.drive.plant().and_then(|plant| match (&plant.actuator, &plant.arm_pin) {
+            (Actuator::Hydraulic(h), Some(coupling)) => Some((h.cylinder, coupling.clone())),
+            _ => None,
+        });
+        let pin_station: Vec<f64> = cylinder.iter().map(|(c, _)| c.arm_pin_m[0]).collect();
+        let stations = recovery::stations_of(arm, &segment_ends, &pin_station);
+        let fibres = stations.iter().map(|s| Fibres::of(&segments[s.segment].section)).collect();
+        let rigid_centre = match (&arm.beam.member, model.payload.string()) {
+            (None, Some(held)) => Some(held.centre_m()),
+            _ => None,
+        };
+        StressProbe {
+            recovery: SectionRecovery::new(arm, stations, rigid_centre),
+            fibres,
+            cylinder,
+            scratch: recovery::Scratch::default(),
+            on_arm: Vec::new(),
+            on_string: Vec::new(),
+            pending: Vec::new(),
+        }
+    }
+
+    /// Values per step: the recovery's, then the cylinder pin's.
+    pub fn width(&self) -> usize {
+        self.recovery.width() + CYLINDER_VALUES
+    }
+
+    /// The probe of a run of `model` in `scene` of `steps` steps, its readings to go in `series`.
+    pub fn for_run(model: &Model, scene: &Scene, steps: usize, series: &mut StressSeries) -> Self {
+        let probe = StressProbe::new(model, &scene.arm.arm, scene);
+        let hands: Vec<String> =
+            model.payload.string().map(|s| s.grips.iter().map(|g| g.hand.clone()).collect()).unwrap_or_default();
+        *series = probe.series(steps, &hands);
+        probe
+    }
+
+    /// An empty series of this probe's readings, with room for `steps` steps; `hands` names the
+    /// string's hands in order.
+    pub fn series(&self, steps: usize, hands: &[String]) -> StressSeries {
+        let stations = self
+            .recovery
+            .stations
+            .iter()
+            .zip(&self.fibres)
+            .map(|(s, f)| SeriesStation { station_m: s.x_m(), segment: s.segment, fibres: *f })
+            .collect();
+        StressSeries {
+            values: Vec::with_capacity(steps * self.width()),
+            width: self.width(),
+            stations,
+            pivot_index: self.recovery.pivot_index(),
+            hands: (0..self.recovery.hand_count())
+                .map(|h| (hands.get(h).cloned().unwrap_or_else(|| format!("hand {h}")), self.recovery.hand_index(h)))
+                .collect(),
+            cylinder_index: self.cylinder.is_some().then(|| self.recovery.width()),
+            extremes: vec![[Extremes::NONE; 2]; self.recovery.stations.len()],
+        }
+    }
+
+    /// Appends the reading at the scene's current state, whose sample is `sample`, under gravity
+    /// `g` to `series` (made by [`Self::series`]).
+    pub fn read(&mut self, scene: &Scene, sample: &ArmSample, g: f64, series: &mut StressSeries) {
+        let (hub, q, qd) = scene.arm.kinematics();
+        let qdd = scene.arm.elastic_accelerations();
+        let state = &ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
+        let (s, c) = hub.angle_rad.sin_cos();
+        let to_hub = |[x, y]: [f64; 2]| [c * x + s * y, -s * x + c * y];
+        self.on_arm.clear();
+        self.on_string.clear();
+        for pair in scene.pairs().filter(|p| p.force_n > 0.0) {
+            let force = pair_force(pair);
+            let load = PointLoad { station_m: pair.station_m, point_m: to_hub(pair.point_m), force_n: to_hub(force) };
+            match pair.side {
+                PairSide::Arm => self.on_arm.push(load),
+                PairSide::String => self.on_string.push(load),
+            }
+        }
+        let mut pin_world = [0.0; 2];
+        if let (Some((cylinder, coupling)), Some(rod_force_n)) =
+            (&self.cylinder, sample.actuator.and_then(|a| a.rod_force_n))
+        {
+            let pin = crate::arm::ArmPin::at(
+                cylinder,
+                coupling,
+                (hub.angle_rad, hub.rate_rad_s),
+                q.as_slice(),
+                qd.as_slice(),
+            );
+            let rows = &coupling.rows;
+            let [ax, ay] = cylinder.arm_pin_m;
+            let point_m = [ax + rows[0].dot(&q), ay + rows[1].dot(&q)];
+            let force_n = pin.body_unit.map(|u| rod_force_n * u);
+            self.on_arm.push(PointLoad { station_m: ax, point_m, force_n });
+            pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
+        }
+        if self.recovery.due(&self.scratch) {
+            self.finish(series);
+        }
+        let out = &mut self.pending;
+        let start = out.len();
+        out.resize(start + self.recovery.width(), 0.0);
+        self.recovery.stage(state, g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
+        out.extend_from_slice(&pin_world);
+    }
+
+    /// Completes the readings in `series`: call once after the last read, and before using it.
+    pub fn finish(&mut self, series: &mut StressSeries) {
+        let stride = self.width();
+        self.recovery.flush(&mut self.scratch, &mut self.pending, stride);
+        series.append(&self.pending);
+        self.pending.clear();
+    }
+}
+
+/// A pair's force on the machine, world X, Y: the sum over its points (friction included), or
+/// its normal force along its normal where it reports no points.
+fn pair_force(pair: &crate::scene::ContactPair) -> [f64; 2] {
+    if pair.points.is_empty() {
+        return pair.normal_world.map(|n| pair.force_n * n);
+    }
+    pair.points.iter().fold([0.0; 2], |acc, p| [acc[0] + p.force_n[0], acc[1] + p.force_n[1]])
+}

@@ -1,0 +1,363 @@
+//! Stress along the arm, pin loads and the sign-off checks against independent truths: the
+//! static arm held at an angle against its free-body balance by hand (ideal drive and
+//! cylinder), the root moment against the drive torque from Lagrange's equations at every step of
+//! a lift, the pivot's reaction through an impact against the machine's momentum balance, the
+//! exact nonlinear summation of a strain gauge, and `modal(3)` against `fe`; and the checks of
+//! the URDF's and the scenario's sign-off keys.
+
+use std::path::{Path, PathBuf};
+
+use pipearm::arm::{ArmModel, Fidelity};
+use pipearm::beam::BeamModel;
+use pipearm::drive::MotionProfile;
+use pipearm::integrate::IntegratorKind;
+use pipearm::model::Model;
+use pipearm::run::{RunSummary, Series, run};
+use pipearm::scenario::Scenario;
+use pipearm::scene::Scene;
+use pipearm::sensor::SensorSpec;
+use pipearm::stress::{Fibre, StressProbe};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
+}
+
+fn load(name: &str) -> Model {
+    Scenario::load(&root().join("scenarios").join(name)).unwrap().model
+}
+
+/// The station index of the first section at `x_m` (its inboard side at a node).
+fn station(series: &Series, x_m: f64) -> usize {
+    series.stress.stations.iter().position(|s| (s.station_m - x_m).abs() < 1e-9).expect("a station there")
+}
+
+/// (axial force N, bending moment N·m) at station `i`, step `k`.
+fn forces(series: &Series, i: usize, k: usize) -> [f64; 2] {
+    let at = k * series.stress.width + 2 * i;
+    [series.stress.values[at].into(), series.stress.values[at + 1].into()]
+}
+
+/// The default arm's box section by hand: 250 × 500 × 12.5 mm (A, I, c).
+fn box_section() -> (f64, f64, f64) {
+    let (b, h, t) = (0.25, 0.5, 0.0125);
+    let (bi, hi) = (b - 2.0 * t, h - 2.0 * t);
+    (b * h - bi * hi, (b * h.powi(3) - bi * hi.powi(3)) / 12.0, h / 2.0)
+}
+
+/// Weight (N) and first moment of weight about the pivot (N·m) of the machine by hand: the
+/// steel box (ρ A L), each carried body at its station, and the string at its centre.
+fn weight_by_hand(model: &Model) -> (f64, f64) {
+    let g = model.physics.gravity_m_s2;
+    let (area, ..) = box_section();
+    let length = model.robot.arm.length_m();
+    let mu = 7850.0 * area;
+    let mut w = mu * length * g;
+    let mut moment = mu * length * length / 2.0 * g;
+    for body in &model.robot.carried {
+        w += body.mass_kg * g;
+        moment += body.mass_kg * g * body.station_m;
+    }
+    let held = model.payload.string().unwrap();
+    w += held.pipe.mass_kg() * g;
+    moment += held.pipe.mass_kg() * g * held.centre_m();
+    (w, moment)
+}
+
+/// The default machine held still at 30° under an ideal drive, the string `string`.
+fn held_at(angle_deg: f64, string: Option<Fidelity>) -> (Model, RunSummary, Series) {
+    let mut model = load("default.toml");
+    model.drive.motion = MotionProfile::hold(angle_deg.to_radians());
+    model.dampeners.clear();
+    model.time.settle_s = 0.3;
+    model.payload.string_mut().unwrap().model = string;
+    let (summary, series) = run(&model, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    (model, summary, series)
+}
+
+#[test]
+fn the_static_arm_held_at_an_angle_balances_as_its_free_body_by_hand() {
+    let angle_deg: f64 = 30.0;
+    let (s, c) = angle_deg.to_radians().sin_cos();
+    for string in [Some(Fidelity::Rigid), Some(Fidelity::Modal { modes: 4 })] {
+        let (model, summary, series) = held_at(angle_deg, string);
+        let (weight, moment) = weight_by_hand(&model);
+        // The pivot holds the weight: (0, W) in the world, (W sin θ, W cos θ) along and across
+        // the arm. A static run stays at its start.
+        let pivot = &summary.sign_off.as_ref().unwrap().pins.pivot;
+        // (The histories are kept to seven digits.)
+        assert!(pivot.world_n[0].abs() < 1e-6 * weight, "{string:?}: {:?}", pivot.world_n);
+        assert!((pivot.world_n[1] / weight - 1.0).abs() < 1e-6, "{string:?}: {} vs {weight}", pivot.world_n[1]);
+        assert!((pivot.arm_n[0] / (weight * s) - 1.0).abs() < 1e-6);
+        assert!((pivot.arm_n[1] / (weight * c) - 1.0).abs() < 1e-6);
+        // The root section: N = −W sin θ, M = g cos θ Σ m x (the sag's lever on the load along
+        // the arm, deflection over length, is below 3e-3), σ = N/A ± M c / I.
+        let [n, m] = forces(&series, station(&series, 0.0), series.t_s.len() - 1);
+        assert!((n / (-weight * s) - 1.0).abs() < 1e-6, "{string:?}: N {n} vs {}", -weight * s);
+        assert!((m / (moment * c) - 1.0).abs() < 3e-3, "{string:?}: M {m} vs {}", moment * c);
+        let (area, inertia, half_depth) = box_section();
+        let stress = &summary.sign_off.as_ref().unwrap().stress;
+        let upper = -weight * s / area + moment * c * half_depth / inertia;
+        let lower = -weight * s / area - moment * c * half_depth / inertia;
+        assert!((stress.peak_stress_pa / upper.abs().max(lower.abs()) - 1.0).abs() < 3e-3);
+        assert_eq!(stress.peak_station_m, 0.0);
+        assert_eq!(stress.peak_fibre, if upper.abs() > lower.abs() { Fibre::Upper } else { Fibre::Lower });
+        // At the arm's tip only the gripper's hand hangs on: no moment for a string lumped at its
+        // centre; a flexible string's overhang beyond the gripper, w a² / 2 with w its weight
+        // per length across the arm, give or take the span's end moment (w L² / 12 between two
+        // hands held still; the arm's bending turns them a little).
+        let tip = series.stress.stations.len() - 1;
+        let [_, m_tip] = forces(&series, tip, 0);
+        let held = model.payload.string().unwrap();
+        let w = held.pipe.pipe.mass_per_length_kg_m * model.physics.gravity_m_s2 * c;
+        let overhang = held.start_m() + held.pipe.length_m - model.robot.arm.length_m();
+        let span = held.grips[1].station_m - held.grips[0].station_m;
+        let expected = if string == Some(Fidelity::Rigid) { 0.0 } else { w * overhang * overhang / 2.0 };
+        assert!((m_tip - expected).abs() < 1e-6 * moment + w * span * span / 12.0, "{string:?}: {m_tip} vs {expected}");
+    }
+}
+
+#[test]
+fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
+    let mut model = load("hydraulic.toml");
+    let angle: f64 = 45f64.to_radians();
+    model.drive.motion = MotionProfile::hold(angle);
+    model.dampeners.clear();
+    model.time.settle_s = 0.3;
+    let (summary, _) = run(&model, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    let (weight, moment) = weight_by_hand(&model);
+    // The rod's line from the base pin to the arm pin (URDF: base (0.40, −0.50), arm pin 2.00 m
+    // out and 0.70 m below the arm's axis), its moment arm about the pivot, and the rod force
+    // that balances the weight's moment g cos θ Σ m x.
+    let (s, c) = angle.sin_cos();
+    let pin = [2.0 * c + 0.7 * s, 2.0 * s - 0.7 * c];
+    let d = [pin[0] - 0.40, pin[1] + 0.50];
+    let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
+    let lever = pin[0] * unit[1] - pin[1] * unit[0];
+    let rod = moment * c / lever;
+    let pins = &summary.sign_off.as_ref().unwrap().pins;
+    let cylinder = pins.cylinder.as_ref().unwrap();
+    // The arm sags and the pin moves with it (deflection over the pin's lever, ~1e-3).
+    assert!((cylinder.peak_force_n / rod - 1.0).abs() < 3e-3, "rod {} vs {rod}", cylinder.peak_force_n);
+    for k in 0..2 {
+        assert!((cylinder.world_n[k] - rod * unit[k]).abs() < 3e-3 * rod, "{:?}", cylinder.world_n);
+    }
+    // The pivot takes the rest: weight minus the rod's push.
+    let pivot = [-rod * unit[0], weight - rod * unit[1]];
+    let pivot_magnitude = pivot[0].hypot(pivot[1]);
+    assert!((pins.pivot.peak_force_n / pivot_magnitude - 1.0).abs() < 3e-3, "{:?} vs {pivot:?}", pins.pivot);
+    for k in 0..2 {
+        assert!((pins.pivot.world_n[k] - pivot[k]).abs() < 3e-3 * rod, "{:?} vs {pivot:?}", pins.pivot.world_n);
+    }
+}
+
+#[test]
+fn the_root_moment_is_the_drive_torque_less_the_hubs_inertia_at_every_step() {
+    // Lagrange's θ equation gives the drive torque; the summation is Newton–Euler on the parts
+    // outboard of the root: they differ by the hub's own inertia, J_hub θ̈, and by second-order
+    // terms. The pad strikes the arm in this run and its moment is in both.
+    let model = load("default.toml");
+    let (summary, series) = run(&model, None).unwrap();
+    let j_hub = model.robot.arm.hub_inertia_kg_m2;
+    let root = station(&series, 0.0);
+    let peak = summary.peak_drive_torque_n_m;
+    let mut worst: f64 = 0.0;
+    for k in 0..series.t_s.len() {
+        let [_, m] = forces(&series, root, k);
+        let expected = series.drive_torque_n_m[k] - j_hub * series.hub_accel_rad_s2[k];
+        worst = worst.max((m - expected).abs());
+    }
+    println!("root moment against the drive torque: worst {worst:.1} N·m, {:.2e} of the peak", worst / peak);
+    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
+}
+
+#[test]
+fn the_summation_is_the_strain_gauges_exact_moment_to_second_order() {
+    // A strain gauge sums the outboard loads with the full nonlinear kinematics at every step;
+    // the recovery's rows drop products of two elastic quantities.
+    let mut model = load("default.toml");
+    let gauge = SensorSpec { name: "g".into(), kind: "strain-gauge".into(), station_m: Some(3.0) };
+    model.sensors = vec![gauge.resolve(&model.robot).unwrap()];
+    let (_, series) = run(&model, None).unwrap();
+    let i = station(&series, 3.0);
+    let readings = &series.sensors[0].values;
+    let peak = readings.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
+    let worst = (0..series.t_s.len()).map(|k| (forces(&series, i, k)[1] - readings[k][0]).abs()).fold(0.0, f64::max);
+    println!("summation against the gauge: worst {worst:.2} N·m, {:.2e} of the peak", worst / peak);
+    assert!(worst < 5e-4 * peak, "worst {worst} N·m against a peak of {peak}");
+}
+
+/// The machine's linear momentum, world frame, from the state: the arm's Gauss points, its
+/// carried bodies and a flexible string's Gauss points.
+fn momentum(scene: &Scene) -> [f64; 2] {
+    let arm = &scene.arm.arm;
+    let (hub, q, qd) = scene.arm.kinematics();
+    let (s, c) = hub.angle_rad.sin_cos();
+    let w = hub.rate_rad_s;
+    let velocity = |x: f64, rows: &pipearm::arm::StationRows| {
+        let [u, v, _] = rows.displacement(&q);
+        let [ud, vd, _] = rows.displacement(&qd);
+        let body = [ud - w * v, vd + w * (x + u)];
+        [c * body[0] - s * body[1], s * body[0] + c * body[1]]
+    };
+    let mut p = [0.0; 2];
+    let mut add = |mass: f64, v: [f64; 2]| {
+        p[0] += mass * v[0];
+        p[1] += mass * v[1];
+    };
+    for e in &arm.beam.elements {
+        for (xi, weight) in pipearm::beam::GAUSS_4 {
+            let x = e.x0_m + xi * e.length_m;
+            add(weight * e.length_m * e.mass_per_length_kg_m, velocity(x, &arm.station_rows(x)));
+        }
+    }
+    for m in &arm.beam.spec.masses {
+        add(m.mass_kg, velocity(m.position_m, &arm.station_rows(m.position_m)));
+    }
+    if let Some(member) = &arm.beam.member {
+        for e in &member.elements {
+            for (xi, weight) in pipearm::beam::GAUSS_4 {
+                let x = e.x0_m + xi * e.length_m;
+                add(weight * e.length_m * e.mass_per_length_kg_m, velocity(x, &arm.string_station_rows(x).unwrap()));
+            }
+        }
+    }
+    p
+}
+
+#[test]
+fn the_pivot_reaction_through_an_impact_keeps_the_momentum_balance() {
+    // ∫ (R + F_pad + W) dt = Δp over the first impact: the pivot's reaction from the recovered
+    // accelerations against the change of the momentum of every mass, from the velocities. The
+    // window holds the drive's stop too (its deceleration ends at 15 s); the trapezoidal sum across
+    // that jump and the integrator's own velocity rule leave an error that falls with the step
+    // (0.19 N·s at 1 ms, 0.048 N·s at 0.25 ms).
+    let mut model = load("default.toml");
+    model.integrator = IntegratorKind::default();
+    let h = model.time.step_s / 12.0;
+    let beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 4 })).unwrap()).unwrap();
+    let arm = ArmModel::new(beam, Fidelity::Modal { modes: 3 }, model.arm_options()).unwrap();
+    let mut scene = Scene::with_arm(&model, arm.clone()).unwrap();
+    while scene.arm.time_s() < 14.9 {
+        scene.step(model.time.step_s).unwrap();
+    }
+    let mut probe = StressProbe::new(&model, &arm, &scene);
+    let g = model.physics.gravity_m_s2;
+    let weight = (arm.beam.total_mass_kg) * g;
+    let mut readings = probe.series(0, &[]);
+    let (mut pad, mut momenta, mut times) = (Vec::new(), Vec::new(), Vec::new());
+    let mut peak_pad: f64 = 0.0;
+    while scene.arm.time_s() < 15.1 {
+        let sample = scene.arm.sample();
+        probe.read(&scene, &sample, g, &mut readings);
+        let force = scene
+            .pairs()
+            .map(|p| p.normal_world.map(|n| p.force_n * n))
+            .fold([0.0; 2], |a, f| [a[0] + f[0], a[1] + f[1]]);
+        peak_pad = peak_pad.max(force[0].hypot(force[1]));
+        pad.push(force);
+        momenta.push(momentum(&scene));
+        times.push(scene.arm.time_s());
+        scene.step(h).unwrap();
+    }
+    probe.finish(&mut readings);
+    let values: Vec<f64> = readings.values.iter().map(|v| f64::from(*v)).collect();
+    assert!(peak_pad > 500.0, "the window holds the impact: peak {peak_pad} N");
+    let width = probe.width();
+    let pivot_at = probe.recovery.pivot_index();
+    let mut impulse = [0.0; 2];
+    let net = |k: usize| {
+        let (s, c) = scene_angle(&times, k, &model);
+        let r = [values[k * width + pivot_at], values[k * width + pivot_at + 1]];
+        let world = [c * r[0] - s * r[1], s * r[0] + c * r[1]];
+        [world[0] + pad[k][0], world[1] + pad[k][1] - weight]
+    };
+    for k in 1..times.len() {
+        let (a, b) = (net(k - 1), net(k));
+        let dt = times[k] - times[k - 1];
+        impulse[0] += 0.5 * dt * (a[0] + b[0]);
+        impulse[1] += 0.5 * dt * (a[1] + b[1]);
+    }
+    let last = times.len() - 1;
+    let change = [momenta[last][0] - momenta[0][0], momenta[last][1] - momenta[0][1]];
+    let pad_impulse: f64 = (1..times.len())
+        .map(|k| 0.5 * (times[k] - times[k - 1]) * (pad[k][0].hypot(pad[k][1]) + pad[k - 1][0].hypot(pad[k - 1][1])))
+        .sum();
+    println!("impulse {impulse:?} N·s against the momentum change {change:?} N·s; pad impulse {pad_impulse:.3} N·s");
+    for k in 0..2 {
+        assert!(
+            (impulse[k] - change[k]).abs() < 0.005 * pad_impulse,
+            "{impulse:?} vs {change:?} (pad impulse {pad_impulse})"
+        );
+    }
+}
+
+/// sin, cos of the hub angle at step `k` of the window (the prescribed drive's).
+fn scene_angle(times: &[f64], k: usize, model: &Model) -> (f64, f64) {
+    model.drive.motion.sample(times[k]).angle_rad.sin_cos()
+}
+
+/// Curvature row over q at the station `x_m`, on the side `inboard` of it: second-order one-sided
+/// differences of the slope rows inside the one element (Hermite slopes are quadratic there).
+fn curvature_row(arm: &ArmModel, x_m: f64, inboard: bool, element_m: f64) -> nalgebra::DVector<f64> {
+    let h = 0.1 * element_m;
+    let sign = if inboard { -1.0 } else { 1.0 };
+    let slope = |x: f64| arm.station_rows(x).0[2].clone();
+    (-3.0 * slope(x_m) + 4.0 * slope(x_m + sign * h) - slope(x_m + 2.0 * sign * h)) * (sign / (2.0 * h))
+}
+
+#[test]
+fn modal_summation_follows_fe_where_loads_concentrate_and_modal_curvature_does_not() {
+    // The default lift with its pad strike, the string lumped at its centre (a 121 kg point load on
+    // the arm besides the hands), under generalized-α (stable for fe at 3 ms): the bending moment at
+    // every section from modal(3) against fe, by force summation and by the modes' curvature
+    // (M = −EI v″, the modal stress shapes).
+    let mut model = load("default.toml");
+    model.integrator = IntegratorKind::default();
+    model.payload.string_mut().unwrap().model = Some(Fidelity::Rigid);
+    let (_, fe) = run(&model, Some(Fidelity::Fe)).unwrap();
+    let modal_fidelity = Fidelity::Modal { modes: 3 };
+    let (_, modal) = run(&model, Some(modal_fidelity)).unwrap();
+    let arm = model.arm_model(modal_fidelity).unwrap();
+    let (_, inertia, _) = box_section();
+    let ei = 2.06e11 * inertia;
+    let element_m = model.robot.arm.length_m() / model.robot.arm.elements as f64;
+    let stations = &fe.stress.stations;
+    assert_eq!(stations.len(), modal.stress.stations.len());
+    let steps = fe.t_s.len();
+    let peak = (0..stations.len())
+        .flat_map(|i| (0..steps).map(move |k| (i, k)))
+        .map(|(i, k)| forces(&fe, i, k)[1].abs())
+        .fold(0.0, f64::max);
+    let (mut worst_sum, mut worst_shape) = ((0.0, 0.0), (0.0, 0.0));
+    for (i, station) in stations.iter().enumerate() {
+        // The tip's outboard side carries nothing but its own bodies' inertia: not a section.
+        if i == stations.len() - 1 {
+            continue;
+        }
+        let inboard = i > 0 && (i + 1 == stations.len() || stations[i + 1].station_m != station.station_m);
+        let kappa = curvature_row(&arm, station.station_m, inboard, element_m);
+        let n = modal.modal_dofs;
+        for k in 0..steps {
+            let m_fe = forces(&fe, i, k)[1];
+            let sum = (forces(&modal, i, k)[1] - m_fe).abs();
+            let q = nalgebra::DVector::from_column_slice(&modal.modal_q[k * n..(k + 1) * n]);
+            let shape = (-ei * kappa.dot(&q) - m_fe).abs();
+            if sum > worst_sum.0 {
+                worst_sum = (sum, station.station_m);
+            }
+            if shape > worst_shape.0 {
+                worst_shape = (shape, station.station_m);
+            }
+        }
+    }
+    println!(
+        "modal(3) against fe, worst over the sections and the run, of the peak moment {peak:.0} N·m: \
+         summation {:.2e} at {:.3} m, modal curvature {:.2e} at {:.3} m",
+        worst_sum.0 / peak,
+        worst_sum.1,
+        worst_shape.0 / peak,
+        worst_shape.1
+    );
+    assert!(worst_sum.0 < 5e-3 * peak, "summation {worst_sum:?}");
+    assert!(worst_shape.0 > 4.0 * worst_sum.0, "curvature {worst_shape:?} against summation {worst_sum:?}");
+}
