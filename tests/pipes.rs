@@ -12,9 +12,11 @@ use pipearm::arm::Fidelity;
 use pipearm::beam::BeamModel;
 use pipearm::capacity::{CapacityError, heaviest_kg, jaw_range, scene_limit};
 use pipearm::model::Model;
-use pipearm::robot::pipes::{CustomPipeSpec, Product, Range};
+use pipearm::robot::pipes::{CustomPipeSpec, PIPE_CATALOGUE, PipeSize, Product, Range};
 use pipearm::robot::{PipeString, StringSpec};
 use pipearm::scenario::{PayloadSpec, Scenario, ScenarioError};
+use pipearm::sweep::Vary;
+use pipearm::sweep::pipes::{LIFTABLE, expand};
 
 fn scenario_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios").join(name)
@@ -197,4 +199,87 @@ fn the_jaws_close_on_the_diameters_their_travel_allows() {
     assert!(with_string("default.toml", |s| *s = StringSpec::of_size("9-5/8")).is_ok());
     let e = with_string("default.toml", |s| *s = StringSpec::of_size("10-3/4")).unwrap_err().to_string();
     assert!(e.contains("payload.size") && e.contains("273.1 mm") && e.contains("60.0 ..= 260.0 mm"), "{e}");
+}
+
+/// A catalogue row as `--vary` and `pipearm pipes` spell it, written here from its columns.
+fn entry_of(p: &PipeSize) -> String {
+    format!("{}@{:.2}", p.size, p.nominal_weight_lb_ft)
+}
+
+fn expanded(scenario: &str, values: &str) -> Result<Vec<String>, String> {
+    let vary: Vary = format!("payload.size={values}").parse().unwrap();
+    let vary = expand(&scenario_path(scenario), vary).map_err(|e| e.to_string())?;
+    Ok(vary.values.iter().map(|v| v.as_str().unwrap().to_string()).collect())
+}
+
+#[test]
+fn a_class_expands_to_exactly_the_catalogue_rows_of_its_product() {
+    for product in Product::ALL {
+        let want: Vec<String> = PIPE_CATALOGUE.iter().filter(|p| p.product == product).map(entry_of).collect();
+        assert!(!want.is_empty());
+        assert_eq!(expanded("default.toml", product.name()).unwrap(), want, "{}", product.name());
+    }
+    // An entry is written as `pipearm pipes` prints it; a row named twice runs once; a size stays.
+    let casing = PIPE_CATALOGUE.iter().filter(|p| p.product == Product::Casing).count();
+    let mixed = expanded("default.toml", "9-5/8@47,casing,2-7/8").unwrap();
+    assert_eq!(mixed[0], "9-5/8@47.00");
+    assert_eq!(mixed.len(), casing + 1);
+    assert_eq!(mixed.last().unwrap(), "2-7/8");
+    // Unknown entries and classes name what is allowed, before anything runs.
+    for (bad, allowed) in [("9-5/8@48", "9-5/8@47.00"), ("9-3/4@47", "pipearm pipes"), ("casings", "drill-collar")] {
+        let e = expanded("default.toml", bad).unwrap_err();
+        assert!(e.contains("payload.size") && e.contains(bad) && e.contains(allowed), "{e}");
+    }
+}
+
+#[test]
+fn liftable_is_every_row_the_jaws_take_and_the_servo_holds_by_hand() {
+    // servo.toml: the string in the gripper alone at its middle, 9.0 m out; the servo holds
+    // (1000 × 160 N·m / g − S₀) / 9.0 at the horizontal, the worst angle of its lift; the jaws
+    // close on 60 ..= 260 mm. A size alone is a uniform string of its default range's length.
+    let g = 9.80665;
+    let servo_kg = (1000.0 * 160.0 / g - pipe_arm_first_moment_kg_m()) / 9.0;
+    let mass = |p: &PipeSize| {
+        p.mass_per_length_kg_m * p.product.ranges()[p.product.default_range().index()].unwrap().default_m
+    };
+    let by_hand: Vec<String> = PIPE_CATALOGUE
+        .iter()
+        .filter(|p| (0.06..=0.26).contains(&p.outer_diameter_m) && mass(p) <= servo_kg)
+        .map(entry_of)
+        .collect();
+    assert!(PIPE_CATALOGUE.iter().all(|p| (mass(p) / servo_kg - 1.0).abs() > 1e-3), "a row on the limit");
+    let lifted = expanded("servo.toml", LIFTABLE).unwrap();
+    assert_eq!(lifted, by_hand);
+    // The shipped arm's servo lifts no casing of 10-3/4 in or more, no collar of 6 in or more.
+    assert!(!lifted.iter().any(|e| e.starts_with("10-3/4@") || e.starts_with("6@") || e.starts_with("11@")));
+}
+
+/// robots/casing_arm.urdf: 9 m of 600 x 300 x 20 mm steel box, hand 350 kg at 6 m, gripper 200 kg
+/// and two 40 kg jaws at 9 m.
+fn casing_arm_first_moment_kg_m() -> f64 {
+    let area = 0.6 * 0.3 - 0.56 * 0.26;
+    7850.0 * area * 9.0 * 9.0 / 2.0 + 350.0 * 6.0 + (200.0 + 2.0 * 40.0) * 9.0
+}
+
+#[test]
+fn the_casing_arm_lifts_every_casing_and_collar_by_the_moment_balance() {
+    let g = 9.80665;
+    let s0 = casing_arm_first_moment_kg_m();
+    let model = Scenario::load(&scenario_path("casing_arm.toml")).unwrap().model;
+    let machine = pipearm::capacity::machine_first_moment_kg_m(&model.robot).unwrap();
+    assert!(rel(machine, s0) < 1e-12, "{machine} vs {s0}");
+    // The joint's 600 kN·m at the horizontal, the worst angle: m = (T / g − S₀) / x.
+    let limit = scene_limit(&model);
+    for x in [5.0, 7.5, 9.0] {
+        assert!(rel(heaviest_kg(&limit, 0.0, machine, x, g), (600e3 / g - s0) / x) < 1e-9);
+        assert!(rel(heaviest_kg(&limit, 60f64.to_radians(), machine, x, g), (1200e3 / g - s0) / x) < 1e-9);
+    }
+    // Its jaws: 0.1975 m either side, 100 mm thick, ±0.11 m: 75 ..= 515 mm.
+    let range = jaw_range(&model.robot).unwrap();
+    assert!((range.min_diameter_m - 0.075).abs() < 1e-12 && (range.max_diameter_m - 0.515).abs() < 1e-12);
+    // Its rated range: every casing and drill collar, held by casing_arm.toml's grips.
+    let lifted = expanded("casing_arm.toml", LIFTABLE).unwrap();
+    for p in PIPE_CATALOGUE.iter().filter(|p| matches!(p.product, Product::Casing | Product::DrillCollar)) {
+        assert!(lifted.contains(&entry_of(p)), "{} not lifted", entry_of(p));
+    }
 }

@@ -28,7 +28,8 @@ pub struct EnvelopeArgs {
     #[arg(long, value_name = "N", required = true)]
     samples: Option<usize>,
     /// A grouping key and its values, e.g. payload.size=2-3/8,2-7/8,3-1/2,4-1/2: an envelope
-    /// per value, all with the same draws of the spread keys.
+    /// per value, all with the same draws of the spread keys. payload.size also takes catalogue
+    /// entries (9-5/8@47.00) and classes (casing, drill-collar, ..., liftable).
     #[arg(long, value_name = "KEY=VALUES")]
     per: Option<Vary>,
     /// Seed of the draw: the same seed gives the same runs on any thread count or shards.

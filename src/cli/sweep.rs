@@ -15,6 +15,8 @@ pub struct SweepArgs {
     #[arg(required = true)]
     scenario: Option<PathBuf>,
     /// A varied key: KEY=V1,V2,... or KEY=A..B:STEP (B included); repeat for a Cartesian product.
+    /// payload.size also takes catalogue entries (9-5/8@47.00) and classes (casing, tubing,
+    /// drill-pipe, heavy-weight-drill-pipe, drill-collar, liftable).
     #[arg(long, value_name = "KEY=VALUES")]
     vary: Vec<pipearm::sweep::Vary>,
     /// Output folder: plan.json, cases/, results.csv, results.json, force_vs_weight.svg.

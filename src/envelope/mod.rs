@@ -134,7 +134,8 @@ pub use crate::sweep::Progress;
 /// shard's runs that are not current, and merges if the shard is the whole envelope.
 pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, EnvelopeError> {
     check_spreads(&request.scenario, &request.spreads, request.per.as_ref())?;
-    let sampling = Sampling::new(&request.spreads, request.samples, request.seed, request.method, request.per.clone())?;
+    let per = request.per.clone().map(|p| crate::sweep::pipes::expand(&request.scenario, p)).transpose()?;
+    let sampling = Sampling::new(&request.spreads, request.samples, request.seed, request.method, per)?;
     let pool =
         rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build().map_err(SweepError::from)?;
     let vary = sampling.vary(&request.spreads);
@@ -238,7 +239,10 @@ fn write(dir: &Path, plan: &Plan, rows: &[Row], envelope: &Envelope) -> Result<V
 
 /// `envelope.csv`: a row per group and figure, its percentiles.
 fn table(envelope: &Envelope) -> String {
-    let mut out = String::from("group,weight_n,runs,diverged,figure,p5,p50,p95,p99,max\n");
+    let mut out = String::from(
+        "group,size,weight_lb_ft,grade,joint_mass_kg,payload_kg,weight_n,runs,diverged,figure,p5,p50,p95,p99,max\n",
+    );
+    let number = |x: Option<f64>| x.map(|x| x.to_string()).unwrap_or_default();
     for g in &envelope.groups {
         let figures =
             [("peak_force_n".to_string(), g.peak_force_n), ("peak_force_per_weight".into(), g.peak_force_per_weight)]
@@ -247,8 +251,13 @@ fn table(envelope: &Envelope) -> String {
                 .chain([("residual_amplitude_m".to_string(), g.residual_amplitude_m)]);
         for (figure, p) in figures {
             out += &format!(
-                "{},{},{},{},{figure},{},{},{},{},{}\n",
+                "{},{},{},{},{},{},{},{},{},{figure},{},{},{},{},{}\n",
                 g.per.as_deref().unwrap_or("all"),
+                g.size.as_deref().unwrap_or_default(),
+                number(g.weight_lb_ft),
+                g.grade.as_deref().unwrap_or_default(),
+                number(g.joint_mass_kg),
+                g.payload_kg,
                 g.weight_n,
                 g.runs,
                 g.diverged,

@@ -91,6 +91,16 @@ pub struct Sensitivity {
 pub struct GroupEnvelope {
     /// The grouping key's value (none without `--per`).
     pub per: Option<String>,
+    /// The string's trade size (`string.size` of its runs' summaries), if a string is held.
+    pub size: Option<String>,
+    /// A catalogue string's nominal weight, lb/ft.
+    pub weight_lb_ft: Option<f64>,
+    /// Its steel grade (`payload.grade`), if given.
+    pub grade: Option<String>,
+    /// The mass of one of its joints with its connection, kg, when made of joints.
+    pub joint_mass_kg: Option<f64>,
+    /// What the string is, as an entry (`9-5/8@47.00`): the chart's label of the group's point.
+    pub label: String,
     /// Payload mass, kg (the median over the runs, in case the mass itself is spread).
     pub payload_kg: f64,
     /// Its weight, N.
@@ -168,8 +178,15 @@ pub fn group_envelope(
         sensitivity("peak_force_n", sampling, &keys, values, figure(&|r| r.peak_force_n())),
         sensitivity("residual_amplitude_m", sampling, &keys, values, figure(&|r| r.residual_m)),
     ];
+    let first = rows.first();
+    let string = |key: &str| first.and_then(|r| r.get(&format!("summary.string.{key}")));
     GroupEnvelope {
         per,
+        size: string("size").and_then(|v| v.as_str()).map(str::to_string),
+        weight_lb_ft: string("weight_lb_ft").and_then(|v| v.as_f64()),
+        grade: string("grade").and_then(|v| v.as_str()).map(str::to_string),
+        joint_mass_kg: string("joint_mass_kg").and_then(|v| v.as_f64()),
+        label: first.map(|r| crate::sweep::chart::string_label(r, "summary.")).unwrap_or_default(),
         payload_kg,
         weight_n,
         runs: rows.len(),

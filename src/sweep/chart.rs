@@ -1,7 +1,8 @@
 //! The sweep's chart: peak contact force (the largest over the contact pairs, N) against the
-//! weight of the string held (payload mass × standard gravity, N), one curve per combination of
-//! the varied keys outside `payload.` (SVG). [`compare`] draws several sweeps' curves on the same
-//! axes, each under its own label (`pipearm sweep chart`).
+//! string's mass (the payload's, kg), each point labelled with the string's catalogue entry
+//! (`9-5/8@47.00`), one curve per combination of the varied keys outside `payload.` (SVG).
+//! [`compare`] draws several sweeps' curves on the same axes, each under its own label
+//! (`pipearm sweep chart`).
 
 use std::path::Path;
 
@@ -10,10 +11,22 @@ use plotters::prelude::*;
 use super::SweepError;
 use super::plan::Plan;
 use super::row::{Row, cell};
-use crate::arm::STANDARD_GRAVITY_M_S2;
+use crate::robot::pipes::ENTRY_SEPARATOR;
 
-/// One curve: its label and its (weight N, peak force N) points, by weight.
-pub type Curve = (String, Vec<(f64, f64)>);
+/// One point: the payload's mass (kg), the largest peak contact force (N), and what the string
+/// is (its entry; empty without a catalogue string).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Point {
+    /// Payload mass, kg.
+    pub kg: f64,
+    /// Largest peak contact force over the pairs, N.
+    pub force_n: f64,
+    /// The string's catalogue entry (`9-5/8@47.00`), its size alone, or empty.
+    pub label: String,
+}
+
+/// One curve: its label and its points, by mass.
+pub type Curve = (String, Vec<Point>);
 
 /// The curves of the chart, in the order their first case comes in the plan. Cases without a
 /// contact pair have no peak force and are left out.
@@ -21,7 +34,7 @@ pub fn curves(plan: &Plan, rows: &[Row]) -> Vec<Curve> {
     let others: Vec<&str> = plan.keys().into_iter().filter(|k| !k.starts_with("payload.")).collect();
     let mut curves: Vec<Curve> = Vec::new();
     for (case, row) in plan.cases.iter().zip(rows) {
-        let Some(point) = weight_and_force(row) else { continue };
+        let Some(point) = point(row) else { continue };
         let label = if others.is_empty() { "all cases".to_string() } else { case.describe(&others) };
         match curves.iter_mut().find(|(l, _)| *l == label) {
             Some((_, points)) => points.push(point),
@@ -29,16 +42,26 @@ pub fn curves(plan: &Plan, rows: &[Row]) -> Vec<Curve> {
         }
     }
     for (_, points) in &mut curves {
-        points.sort_by(|a, b| a.0.total_cmp(&b.0));
+        points.sort_by(|a, b| a.kg.total_cmp(&b.kg));
     }
     curves
 }
 
-/// (string weight N, largest peak contact force over the pairs N) of a case.
-fn weight_and_force(row: &Row) -> Option<(f64, f64)> {
-    let weight = row.get("summary.payload_kg")?.as_f64()? * STANDARD_GRAVITY_M_S2;
-    let force = row.largest_peak_force_n("summary.")?;
-    Some((weight, force))
+/// A case's point.
+fn point(row: &Row) -> Option<Point> {
+    let kg = row.get("summary.payload_kg")?.as_f64()?;
+    let force_n = row.largest_peak_force_n("summary.")?;
+    Some(Point { kg, force_n, label: string_label(row, "summary.") })
+}
+
+/// What the string of a summary at `prefix` is, as an entry (`9-5/8@47.00`): its size and
+/// nominal weight (its size alone for a pipe of the user's own; empty without a string).
+pub fn string_label(row: &Row, prefix: &str) -> String {
+    let size = row.get(&format!("{prefix}string.size")).map(cell).unwrap_or_default();
+    match row.get(&format!("{prefix}string.weight_lb_ft")).and_then(|w| w.as_f64()) {
+        Some(w) => format!("{size}{ENTRY_SEPARATOR}{w:.2}"),
+        None => size,
+    }
 }
 
 /// Draws the chart of one sweep to `path`.
@@ -63,24 +86,28 @@ pub fn compare(path: &Path, caption: &str, sweeps: &[(String, Plan, Vec<Row>)]) 
     draw(path, caption, &labelled)
 }
 
-/// Draws `curves` under `caption` to `path`: a polyline with dots per curve and a legend.
+/// Draws `curves` under `caption` to `path`: a polyline with dots per curve, each dot labelled
+/// with its string, and a legend.
 fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> {
     let err = |e: &dyn std::fmt::Display| SweepError::Chart { path: path.into(), message: e.to_string() };
-    let points = || curves.iter().flat_map(|(_, p)| p.iter().copied());
-    let (x_lo, x_hi) = padded(points().map(|p| p.0), false);
+    let points = || curves.iter().flat_map(|(_, p)| p.iter());
+    let (x_lo, x_hi) = padded(points().map(|p| p.kg), false);
     // Headroom above the highest point for the legend, a line per curve.
-    let (_, y_hi) = padded(points().map(|p| p.1), true);
+    let (_, y_hi) = padded(points().map(|p| p.force_n), true);
     let y_hi = y_hi * (1.0 + 0.06 * curves.len() as f64);
     let root = SVGBackend::new(path, (900, 560)).into_drawing_area();
     let mut chart = force_weight_axes(&root, caption, x_lo..x_hi, y_hi).map_err(|e| err(&e))?;
     for (k, (label, points)) in curves.iter().enumerate() {
         let color = crate::bench::chart::AXIS_COLOURS[k % crate::bench::chart::AXIS_COLOURS.len()];
+        let xy: Vec<(f64, f64)> = points.iter().map(|p| (p.kg, p.force_n)).collect();
         chart
-            .draw_series(LineSeries::new(points.iter().copied(), color.stroke_width(2)))
+            .draw_series(LineSeries::new(xy.iter().copied(), color.stroke_width(2)))
             .map_err(|e| err(&e))?
             .label(label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
-        chart.draw_series(points.iter().map(|p| Circle::new(*p, 3, color.filled()))).map_err(|e| err(&e))?;
+        chart.draw_series(xy.iter().map(|p| Circle::new(*p, 3, color.filled()))).map_err(|e| err(&e))?;
+        let labels: Vec<(f64, f64, &str)> = points.iter().map(|p| (p.kg, p.force_n, p.label.as_str())).collect();
+        label_points(&mut chart, &labels, y_hi).map_err(|e| err(&e))?;
     }
     if !curves.is_empty() {
         chart
@@ -94,21 +121,38 @@ fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> 
     root.present().map_err(|e| err(&e))
 }
 
-/// The axes every force-against-weight chart shares (sweeps, envelopes): string weight (N)
-/// across, peak contact force of the largest pair (N) up from 0, on a white `root`.
+/// A chart of force against mass, as [`force_weight_axes`] makes it.
+pub(crate) type ForceChart<'a> = ChartContext<
+    'a,
+    SVGBackend<'a>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// Writes each point's string (`9-5/8@47.00`) just above it, turned up so that the labels of
+/// neighbouring points do not run into each other; `force_hi_n` is the top of the force axis.
+pub(crate) fn label_points(
+    chart: &mut ForceChart<'_>,
+    points: &[(f64, f64, &str)],
+    force_hi_n: f64,
+) -> Result<(), String> {
+    let style = ("sans-serif", 11).into_font().transform(FontTransform::Rotate270).color(&BLACK);
+    let labelled = points.iter().filter(|p| !p.2.is_empty());
+    chart
+        .draw_series(
+            labelled.map(|(x, y, label)| Text::new(label.to_string(), (*x, y + 0.015 * force_hi_n), style.clone())),
+        )
+        .map_err(|e| e.to_string())?;
+    Ok(())
+}
+
+/// The axes every force-against-weight chart shares (sweeps, envelopes): the string's mass
+/// (kg) across, peak contact force of the largest pair (N) up from 0, on a white `root`.
 pub(crate) fn force_weight_axes<'a>(
     root: &DrawingArea<SVGBackend<'a>, plotters::coord::Shift>,
     caption: &str,
-    weight_n: std::ops::Range<f64>,
+    mass_kg: std::ops::Range<f64>,
     force_hi_n: f64,
-) -> Result<
-    ChartContext<
-        'a,
-        SVGBackend<'a>,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    String,
-> {
+) -> Result<ForceChart<'a>, String> {
     crate::bench::register_font();
     root.fill(&WHITE).map_err(|e| e.to_string())?;
     let mut chart = ChartBuilder::on(root)
@@ -116,11 +160,11 @@ pub(crate) fn force_weight_axes<'a>(
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(80)
-        .build_cartesian_2d(weight_n, 0.0..force_hi_n)
+        .build_cartesian_2d(mass_kg, 0.0..force_hi_n)
         .map_err(|e| e.to_string())?;
     chart
         .configure_mesh()
-        .x_desc("string weight, payload mass × g (N)")
+        .x_desc("string weight, payload mass (kg)")
         .y_desc("peak contact force, largest pair (N)")
         .draw()
         .map_err(|e| e.to_string())?;

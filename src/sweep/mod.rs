@@ -11,6 +11,7 @@
 
 pub mod cases;
 pub mod chart;
+pub mod pipes;
 pub mod plan;
 pub mod row;
 pub mod shard;

@@ -57,6 +57,7 @@ impl Plan {
         if let Some(key) = duplicate_key(&vary) {
             return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
         }
+        let vary = vary.into_iter().map(|v| super::pipes::expand(path, v)).collect::<Result<Vec<_>, _>>()?;
         let rows = product(&vary);
         Self::build_cases(path, vary, rows)
     }
@@ -164,8 +165,8 @@ pub(crate) fn case_spec(
     keys: &[&str],
 ) -> Result<ScenarioSpec, SweepError> {
     let mut document = base.clone();
-    for (key, value) in values {
-        set_key(&mut document, key, value.clone()).map_err(|message| SweepError::Key { key: key.clone(), message })?;
+    for (key, value) in values.iter().flat_map(|(k, v)| super::pipes::assignments(k, v)) {
+        set_key(&mut document, &key, value).map_err(|message| SweepError::Key { key: key.clone(), message })?;
     }
     document.try_into().map_err(|e: toml::de::Error| {
         case_error(case, keys, ScenarioError::Parse { path: path.into(), message: e.to_string() })

@@ -18,6 +18,11 @@ use super::{SweepError, chart, io_error, write_atomic};
 /// Keys whose values the table leaves out (they stay in the JSON).
 pub const TABLE_SKIPS: [&str; 1] = ["impacts"];
 
+/// What the string is: columns a table has whenever a case holds a string, in this order, empty
+/// where the summary leaves one out (a grade not given, the joint mass of a uniform string), so
+/// that a table over pipes always says each one's size, weight, grade and joint mass.
+pub const STRING_COLUMNS: [&str; 4] = ["string.size", "string.weight_lb_ft", "string.grade", "string.joint_mass_kg"];
+
 /// The files a merge wrote.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Merged {
@@ -99,6 +104,14 @@ pub(crate) fn csv(plan: &Plan, rows: &[Row]) -> String {
             && seen.insert(name)
         {
             summary_columns.push(name);
+        }
+    }
+    if summary_columns.contains(&STRING_COLUMNS[0]) {
+        for pair in STRING_COLUMNS.windows(2) {
+            if !summary_columns.contains(&pair[1]) {
+                let after = summary_columns.iter().position(|c| *c == pair[0]).expect("inserted in order");
+                summary_columns.insert(after + 1, pair[1]);
+            }
         }
     }
     let keys = plan.keys();

@@ -10,6 +10,7 @@
 
 mod catalogue;
 mod custom;
+mod entry;
 mod grade;
 
 use serde::{Deserialize, Serialize};
@@ -18,6 +19,7 @@ pub use catalogue::{
     Connection, INCH_M, LB_FT_KG_M, PIPE_CATALOGUE, PipeSize, Product, Range, RangeLength, STEEL_DENSITY_KG_M3,
 };
 pub use custom::CustomPipeSpec;
+pub use entry::{ENTRY_SEPARATOR, class_rows, entry_row, product_named};
 pub use grade::{API_5CT_GRADES, DRILL_PIPE_GRADES, Grade};
 
 use super::RobotError;
