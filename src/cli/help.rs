@@ -29,6 +29,7 @@ pub const MODES: &str = "Examples:
 
 pub const SWEEP: &str = "Examples:
   pipearm sweep scenarios/default.toml --vary payload.size=2-3/8,2-7/8,4-1/2
+  pipearm sweep scenarios/casing_arm.toml --vary payload.size=casing,drill-collar --out recordings/casing-arm
   pipearm sweep scenarios/default.toml --vary 'dampeners[0].gap_m=0..0.0004:0.0001' --out recordings/gaps --shard 0/2
   pipearm sweep scenarios/default.toml --vary 'dampeners[0].gap_m=0..0.0004:0.0001' --out recordings/gaps --shard 1/2
   pipearm sweep merge recordings/gaps                  when every shard is done";
@@ -55,7 +56,8 @@ pub const FIT: &str = "Examples:
 pub const PIPES: &str = "Examples:
   pipearm pipes                                    the whole catalogue
   pipearm pipes 9-5/8                              every 9-5/8 in row
-  pipearm pipes drill-pipe 5                       5 in drill pipe";
+  pipearm pipes drill-pipe 5                       5 in drill pipe
+  pipearm pipes 9-5/8@47.00                        one row, by its entry";
 
 pub const CAPACITY: &str = "Examples:
   pipearm capacity                                 the default scenario's machine and string

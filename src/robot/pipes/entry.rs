@@ -67,6 +67,6 @@ mod tests {
         assert_eq!(entry_row("9-5/8@47").unwrap().unwrap().entry(), "9-5/8@47.00");
         assert!(entry_row("9-5/8").is_none());
         assert!(entry_row("9-5/8@48").unwrap().unwrap_err().contains("9-5/8@47.00"));
-        assert!(entry_row("9-3/4@47").unwrap().unwrap_err().contains("pipearm pipes"));
+        assert!(entry_row("9-7/8@47").unwrap().unwrap_err().contains("pipearm pipes"));
     }
 }
