@@ -158,12 +158,14 @@ impl Context<'_> {
             _ => SectionShape::Tube { outer_diameter_m: n("outer_diameter_m")?, wall_m: n("wall_m")? },
         };
         let material = Material { youngs_modulus_pa: n("youngs_modulus_pa")?, density_kg_m3: n("density_kg_m3")? };
-        let checks = self.segment_checks(node, key, &section)?;
-        let segment = ArmSegment { length_m: n("length_m")?, section, material, checks };
-        crate::beam::Segment::from_shape(segment.length_m, &section, &material)
+        let length_m = n("length_m")?;
+        // The section is checked before its steel: a grade's yield depends on a wall that must
+        // first be a wall.
+        crate::beam::Segment::from_shape(length_m, &section, &material)
             .and_then(|s| crate::beam::BeamSpec::uniform(s, 1).validate())
             .map_err(|e| self.invalid(key, e.to_string()))?;
-        Ok(segment)
+        let checks = self.segment_checks(node, key, &section)?;
+        Ok(ArmSegment { length_m, section, material, checks })
     }
 
     /// A segment's yield strength (`yield_strength_pa`, or `steel` naming a grade) and S–N

@@ -75,7 +75,7 @@ impl Layout {
     }
 
     /// Length of a form: z and the extra values.
-    pub fn len(&self) -> usize {
+    pub fn form_len(&self) -> usize {
         self.z_len() + self.extra
     }
 
@@ -88,7 +88,7 @@ impl Layout {
 
     /// A zero form.
     pub fn zero(&self) -> Form {
-        Form::zeros(self.len())
+        Form::zeros(self.form_len())
     }
 
     fn block_start(&self, block: Block) -> usize {

@@ -178,7 +178,7 @@ impl SectionRecovery {
         }
         forms.push(-whole.fx);
         forms.push(-whole.fy);
-        let support: Vec<usize> = (0..layout.len()).filter(|&c| forms.iter().any(|f| f[c] != 0.0)).collect();
+        let support: Vec<usize> = (0..layout.form_len()).filter(|&c| forms.iter().any(|f| f[c] != 0.0)).collect();
         let rows = DMatrix::from_fn(forms.len(), support.len(), |r, c| forms[r][support[c]]);
         let hand_forms: Vec<&Form> = hand_actions.iter().flat_map(|a| [&a.fx, &a.fy, &a.m]).collect();
         let hand_support: Vec<usize> =
