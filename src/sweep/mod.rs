@@ -116,7 +116,9 @@ pub enum Progress {
 /// not current, and merges if the shard is the whole sweep.
 pub fn sweep(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, SweepError> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build()?;
-    let (plan, scenarios) = pool.install(|| Plan::build(&request.scenario, request.vary.clone()))?;
+    let vary =
+        request.vary.iter().map(|v| pipes::expand(&request.scenario, v.clone())).collect::<Result<Vec<_>, _>>()?;
+    let (plan, scenarios) = pool.install(|| Plan::build(&request.scenario, vary))?;
     let work = prepare(&plan, &request.out, request.shard)?;
     progress(Progress::Start { todo: work.todo.len() });
     run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| {

@@ -8,13 +8,11 @@ use std::path::Path;
 
 use rayon::prelude::*;
 
+pub use super::plan::{SIZE_KEY, assignments};
 use super::plan::{dotted_key, read_document, set_key, spec_of};
 use super::{SweepError, Vary};
 use crate::robot::pipes::{PIPE_CATALOGUE, PipeSize, class_rows, entry_row, product_named};
 use crate::scenario::Scenario;
-
-/// The key whose values may name catalogue rows.
-pub const SIZE_KEY: &str = "payload.size";
 
 /// The class of every row the machine lifts.
 pub const LIFTABLE: &str = "liftable";
@@ -65,20 +63,6 @@ pub fn expand(path: &Path, vary: Vary) -> Result<Vary, SweepError> {
         }
     }
     Ok(Vary { key: vary.key, values })
-}
-
-/// The keys and values a varied `key` = `value` sets: an entry its size, product and weight;
-/// anything else itself.
-pub fn assignments(key: &str, value: &toml::Value) -> Vec<(String, toml::Value)> {
-    let row = (dotted_key(key) == SIZE_KEY).then(|| value.as_str().and_then(entry_row)).flatten();
-    match row {
-        Some(Ok(row)) => vec![
-            (SIZE_KEY.into(), toml::Value::String(row.size.into())),
-            ("payload.product".into(), toml::Value::String(row.product.name().into())),
-            ("payload.weight_lb_ft".into(), toml::Value::Float(row.nominal_weight_lb_ft)),
-        ],
-        _ => vec![(key.into(), value.clone())],
-    }
 }
 
 /// Every catalogue row the scenario at `path` takes as its string: its machine's jaws close on

@@ -57,7 +57,6 @@ impl Plan {
         if let Some(key) = duplicate_key(&vary) {
             return Err(SweepError::Key { key, message: "varied twice; give its values in one --vary".into() });
         }
-        let vary = vary.into_iter().map(|v| super::pipes::expand(path, v)).collect::<Result<Vec<_>, _>>()?;
         let rows = product(&vary);
         Self::build_cases(path, vary, rows)
     }
@@ -165,12 +164,29 @@ pub(crate) fn case_spec(
     keys: &[&str],
 ) -> Result<ScenarioSpec, SweepError> {
     let mut document = base.clone();
-    for (key, value) in values.iter().flat_map(|(k, v)| super::pipes::assignments(k, v)) {
+    for (key, value) in values.iter().flat_map(|(k, v)| assignments(k, v)) {
         set_key(&mut document, &key, value).map_err(|message| SweepError::Key { key: key.clone(), message })?;
     }
     document.try_into().map_err(|e: toml::de::Error| {
         case_error(case, keys, ScenarioError::Parse { path: path.into(), message: e.to_string() })
     })
+}
+
+/// The key whose values may name catalogue rows (`crate::sweep::pipes`).
+pub const SIZE_KEY: &str = "payload.size";
+
+/// The keys and values a varied `key` = `value` sets: an entry its size, product and weight;
+/// anything else itself.
+pub fn assignments(key: &str, value: &toml::Value) -> Vec<(String, toml::Value)> {
+    let row = (dotted_key(key) == SIZE_KEY).then(|| value.as_str().and_then(crate::robot::pipes::entry_row)).flatten();
+    match row {
+        Some(Ok(row)) => vec![
+            (SIZE_KEY.into(), toml::Value::String(row.size.into())),
+            ("payload.product".into(), toml::Value::String(row.product.name().into())),
+            ("payload.weight_lb_ft".into(), toml::Value::Float(row.nominal_weight_lb_ft)),
+        ],
+        _ => vec![(key.into(), value.clone())],
+    }
 }
 
 /// The segments of a key path as errors write it, `dampeners[0].gap_m` (the dotted index,
