@@ -112,7 +112,11 @@ fn bad_vary_input_names_the_key_and_writes_nothing() {
     let cases: [(&[&str], &[&str]); 7] = [
         (&["drive.nope.x=1"], &["drive.nope.x", "`nope` does not exist under `drive`", "duration_s"]),
         (&["dampeners.3.law.stiffness=1e6"], &["dampeners.3.law.stiffness", "outside the array `dampeners`"]),
-        (&["payload.size=2-7/8,9-9/9"], &["case 1 (payload.size=9-9/9)", "default.toml"]),
+        // A value of payload.size outside the catalogue is refused before any case is planned.
+        (
+            &["payload.size=2-7/8,9-9/9"],
+            &["payload.size", "`9-9/9` is not in the catalogue", "9-5/8@47.00", "liftable"],
+        ),
         (&["time.step_s=0.001,0.5"], &["time.step_s=0.5", "key `time.step_s`"]),
         (&["drive.durationn_s=10"], &["drive.durationn_s=10", "unknown field"]),
         (&["payload.size=2-7/8", "payload.size=4-1/2"], &["payload.size", "varied twice"]),

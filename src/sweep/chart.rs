@@ -106,9 +106,17 @@ fn draw(path: &Path, caption: &str, curves: &[Curve]) -> Result<(), SweepError> 
             .label(label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], color.stroke_width(2)));
         chart.draw_series(xy.iter().map(|p| Circle::new(*p, 3, color.filled()))).map_err(|e| err(&e))?;
-        let labels: Vec<(f64, f64, &str)> = points.iter().map(|p| (p.kg, p.force_n, p.label.as_str())).collect();
-        label_points(&mut chart, &labels, y_hi).map_err(|e| err(&e))?;
     }
+    // Each string once, above its highest point: the curves share their strings.
+    let mut labels: Vec<(f64, f64, &str)> = Vec::new();
+    for p in points() {
+        match labels.iter_mut().find(|l| l.2 == p.label) {
+            Some(l) if l.1 < p.force_n => *l = (p.kg, p.force_n, p.label.as_str()),
+            Some(_) => {}
+            None => labels.push((p.kg, p.force_n, p.label.as_str())),
+        }
+    }
+    label_points(&mut chart, &labels, y_hi).map_err(|e| err(&e))?;
     if !curves.is_empty() {
         chart
             .configure_series_labels()
