@@ -394,8 +394,7 @@ fn scale_bar<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &WorldPlan) -> Drawn
     let s = plan.view.px_per_m;
     let raw = 150.0 / s;
     let decade = 10f64.powf(raw.log10().floor());
-    let length =
-        [1.0, 2.0, 5.0, 10.0].iter().map(|k| k * decade).filter(|l| l * s <= 200.0).next_back().unwrap_or(decade);
+    let length = [1.0, 2.0, 5.0, 10.0].iter().map(|k| k * decade).rfind(|l| l * s <= 200.0).unwrap_or(decade);
     let (x, y) = (plan.rect[0] + 20, plan.rect[3] - 16);
     let end = x + (length * s).round() as i32;
     p.line(&[(x, y), (end, y)], INK, 3)?;

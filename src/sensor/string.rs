@@ -1,5 +1,6 @@
 //! What a held string does during a run, read at every step: its deformed centreline, the
-//! deflection of its far end, and the bending stress at its hands.
+//! deflection of its far end, the bending stress at its hands, and the largest normal stress
+//! along it, axial and bending, |N|/A + |M| c/I, at its stations.
 //!
 //! - A flexibly modelled string (`modal`, `fe`) is a beam of its own ([`crate::beam::MemberModel`]):
 //!   the stress at a hand is σ = M c / I = E c |v″| on either side of the clamp, its root
@@ -9,6 +10,13 @@
 //!   force normal to the string at distance d from the centre (ψ the string's angle), an overhang
 //!   of length a beyond a hand at d_h carries M = μ [f_n(d_h) a²/2 ± ψ̈ a³/3] at its root — the
 //!   quasi-static moment a rigid string's user would compute by hand, with no ringing of its own.
+//!
+//! Stations along the string: a flexible string's every element end, both sides of each node
+//! (σ = E |u′| + E c |v″| there); a rigid string's overhangs at tenths of their length, each
+//! section carrying the overhang beyond it as a cantilever (M as above, N the d'Alembert and
+//! gravity load along the string of the part beyond). A rigid string's span between two hands
+//! is statically indeterminate on the hands and not represented: its hands carry its largest
+//! moment under its own weight whenever the overhangs are longer than a fifth of the span.
 
 use nalgebra::DVector;
 use serde::Serialize;
@@ -26,14 +34,29 @@ pub struct StringProbe {
     stress_per_curvature_pa_m: f64,
     /// c / I: stress per unit moment, Pa/(N·m).
     stress_per_moment_pa_per_n_m: f64,
+    /// E: stress per unit axial strain, Pa.
+    youngs_modulus_pa: f64,
+    /// 1 / A: stress per unit axial force, 1/m².
+    per_axial_force_per_m2: f64,
     form: Form,
 }
+
+/// Tenths of each overhang of a rigid string at which its stress is read.
+const OVERHANG_STATIONS: usize = 10;
 
 #[derive(Debug, Clone)]
 enum Form {
     /// A beam of its own: the deflection rows of centreline points and of its far end, and the
     /// curvature rows at its hands, over q.
-    Flexible { centreline: Vec<(f64, DVector<f64>, DVector<f64>)>, tip_v: DVector<f64>, curvature: Vec<DVector<f64>> },
+    /// And its stations (hub-frame x) with the rows of their axial strain and curvature, one
+    /// station after another in `station_rows`.
+    Flexible {
+        centreline: Vec<(f64, DVector<f64>, DVector<f64>)>,
+        tip_v: DVector<f64>,
+        curvature: Vec<DVector<f64>>,
+        stations_m: Vec<f64>,
+        station_rows: nalgebra::DMatrix<f64>,
+    },
     /// Riding on the arm's section at its centre, with the overhang beyond each outermost hand.
     Rigid { centre_m: f64, rows: StationRows, mass_per_length_kg_m: f64, overhangs: Vec<Overhang> },
 }
@@ -56,6 +79,10 @@ pub struct StringReading {
     pub tip_deflection_m: f64,
     /// Largest bending stress at its hands, Pa.
     pub max_bending_stress_pa: f64,
+    /// Largest |N|/A + |M| c/I over its stations, Pa.
+    pub peak_stress_pa: f64,
+    /// Where, along the string from its hub-side end, m.
+    pub peak_station_m: f64,
 }
 
 /// Points of the centreline the recording draws.
@@ -84,7 +111,20 @@ impl StringProbe {
                     .collect();
                 let tip_v = project(&member.point_rows(ends_m[1], n)[1]);
                 let curvature = member.clamp_curvature_rows(n).iter().map(|(_, row)| project(row)).collect();
-                Form::Flexible { centreline, tip_v, curvature }
+                let (mut stations_m, mut rows) = (Vec::new(), Vec::new());
+                for (e, element) in member.elements.iter().enumerate() {
+                    let [u0, ..] = member.element_rows(e, 0.0, n);
+                    let [u1, ..] = member.element_rows(e, 1.0, n);
+                    let strain = project(&((u1 - u0) / element.length_m));
+                    for xi in [0.0, 1.0] {
+                        let [.., kappa] = member.element_rows(e, xi, n);
+                        stations_m.push(element.x0_m + xi * element.length_m);
+                        rows.push(strain.transpose());
+                        rows.push(project(&kappa).transpose());
+                    }
+                }
+                let station_rows = nalgebra::DMatrix::from_rows(&rows);
+                Form::Flexible { centreline, tip_v, curvature, stations_m, station_rows }
             }
             None => {
                 let centre_m = held.centre_m();
@@ -120,10 +160,13 @@ impl StringProbe {
                 }
             }
         };
+        let area_m2 = std::f64::consts::PI * (r_out * r_out - r_in * r_in);
         StringProbe {
             ends_m,
             stress_per_curvature_pa_m: e * r_out,
             stress_per_moment_pa_per_n_m: r_out / second_moment_m4,
+            youngs_modulus_pa: e,
+            per_axial_force_per_m2: 1.0 / area_m2,
             form,
         }
     }
@@ -135,42 +178,73 @@ impl StringProbe {
 
     /// The reading at `state` under gravity `g` (m/s²).
     pub fn read(&self, state: &ArmState, g: f64) -> StringReading {
-        match &self.form {
-            Form::Flexible { tip_v, curvature, .. } => StringReading {
-                tip_deflection_m: tip_v.dot(state.q),
-                max_bending_stress_pa: curvature
-                    .iter()
-                    .map(|row| self.stress_per_curvature_pa_m * row.dot(state.q).abs())
-                    .fold(0.0, f64::max),
-            },
-            Form::Rigid { centre_m, rows, mass_per_length_kg_m, overhangs } => {
+        let (tip_deflection_m, max_bending_stress_pa) = match &self.form {
+            Form::Flexible { tip_v, curvature, .. } => (
+                tip_v.dot(state.q),
+                curvature.iter().map(|row| self.stress_per_curvature_pa_m * row.dot(state.q).abs()).fold(0.0, f64::max),
+            ),
+            Form::Rigid { centre_m, rows, overhangs, .. } => {
                 let [_, v, phi] = rows.displacement(state.q);
-                let [udd, vdd, phidd] = rows.displacement(state.qdd);
-                let [ud, vd, _] = rows.displacement(state.qd);
-                let [u, ..] = rows.displacement(state.q);
-                let (w, alpha) = (state.hub.rate_rad_s, state.hub.accel_rad_s2);
-                let (rx, ry) = (centre_m + u, v);
-                let a = [udd - 2.0 * w * vd - alpha * ry - w * w * rx, vdd + 2.0 * w * ud + alpha * rx - w * w * ry];
-                let (s, c) = state.hub.angle_rad.sin_cos();
-                let f = [a[0] + g * s, a[1] + g * c];
-                let f_normal = -phi.sin() * f[0] + phi.cos() * f[1];
-                let psi_dd = alpha + phidd;
-                let moment = |o: &Overhang| {
-                    let root = f_normal + psi_dd * o.root_d_m;
-                    let added: f64 =
-                        o.added_masses.iter().map(|(s, m)| m * (root + o.direction * psi_dd * s) * s).sum();
-                    mass_per_length_kg_m
-                        * (root * o.length_m.powi(2) / 2.0 + o.direction * psi_dd * o.length_m.powi(3) / 3.0)
-                        + added
-                };
-                StringReading {
-                    tip_deflection_m: v + (self.ends_m[1] - centre_m) * phi,
-                    max_bending_stress_pa: overhangs
-                        .iter()
-                        .map(|o| self.stress_per_moment_pa_per_n_m * moment(o).abs())
-                        .fold(0.0, f64::max),
-                }
+                let loads = self.rigid_loads(state, g);
+                let root = overhangs.iter().map(|o| self.stress_per_moment_pa_per_n_m * loads.moment(o, 0.0).abs());
+                (v + (self.ends_m[1] - centre_m) * phi, root.fold(0.0, f64::max))
             }
+        };
+        let (peak_station_m, peak_stress_pa) =
+            self.stresses_pa(state, g).into_iter().fold((0.0, 0.0), |best, s| if s.1 > best.1 { s } else { best });
+        StringReading { tip_deflection_m, max_bending_stress_pa, peak_stress_pa, peak_station_m }
+    }
+
+    /// |N|/A + |M| c/I at each of the string's stations at `state` under gravity `g`: (station
+    /// along the string from its hub-side end, m; σ, Pa).
+    pub fn stresses_pa(&self, state: &ArmState, g: f64) -> Vec<(f64, f64)> {
+        match &self.form {
+            Form::Flexible { stations_m, station_rows, .. } => {
+                let values = station_rows * state.q;
+                stations_m
+                    .iter()
+                    .zip(values.as_slice().chunks_exact(2))
+                    .map(|(x, v)| {
+                        let sigma = self.youngs_modulus_pa * v[0].abs() + self.stress_per_curvature_pa_m * v[1].abs();
+                        (x - self.ends_m[0], sigma)
+                    })
+                    .collect()
+            }
+            Form::Rigid { centre_m, overhangs, .. } => {
+                let loads = self.rigid_loads(state, g);
+                let mut out = Vec::with_capacity(overhangs.len() * (OVERHANG_STATIONS + 1));
+                for o in overhangs {
+                    for j in 0..=OVERHANG_STATIONS {
+                        let s = o.length_m * j as f64 / OVERHANG_STATIONS as f64;
+                        let sigma = self.stress_per_moment_pa_per_n_m * loads.moment(o, s).abs()
+                            + self.per_axial_force_per_m2 * loads.axial(o, s).abs();
+                        out.push((centre_m + o.root_d_m + o.direction * s - self.ends_m[0], sigma));
+                    }
+                }
+                out
+            }
+        }
+    }
+
+    /// A rigid string's loads per unit mass at `state`: what its overhangs carry.
+    fn rigid_loads(&self, state: &ArmState, g: f64) -> RigidLoads {
+        let Form::Rigid { centre_m, rows, mass_per_length_kg_m, .. } = &self.form else {
+            unreachable!("only a rigid string has rigid loads")
+        };
+        let [u, v, phi] = rows.displacement(state.q);
+        let [udd, vdd, phidd] = rows.displacement(state.qdd);
+        let [ud, vd, phid] = rows.displacement(state.qd);
+        let (w, alpha) = (state.hub.rate_rad_s, state.hub.accel_rad_s2);
+        let (rx, ry) = (centre_m + u, v);
+        let a = [udd - 2.0 * w * vd - alpha * ry - w * w * rx, vdd + 2.0 * w * ud + alpha * rx - w * w * ry];
+        let (s, c) = state.hub.angle_rad.sin_cos();
+        let f = [a[0] + g * s, a[1] + g * c];
+        RigidLoads {
+            f_normal: -phi.sin() * f[0] + phi.cos() * f[1],
+            f_along: phi.cos() * f[0] + phi.sin() * f[1],
+            psi_dd: alpha + phidd,
+            psi_d_squared: (w + phid).powi(2),
+            mass_per_length_kg_m: *mass_per_length_kg_m,
         }
     }
 
@@ -184,6 +258,44 @@ impl StringProbe {
                 self.ends_m.iter().map(|x| [x + u, v + (x - centre_m) * phi]).collect()
             }
         }
+    }
+}
+
+/// A rigid string's specific loads (m/s², the d'Alembert force and gravity per unit mass) at its
+/// centre, normal to it and along it, its angular acceleration and rate squared.
+struct RigidLoads {
+    f_normal: f64,
+    f_along: f64,
+    psi_dd: f64,
+    psi_d_squared: f64,
+    mass_per_length_kg_m: f64,
+}
+
+impl RigidLoads {
+    /// The bending moment at `s` from overhang `o`'s root, carrying what lies beyond, N·m.
+    fn moment(&self, o: &Overhang, s: f64) -> f64 {
+        let (length, d) = (o.length_m - s, o.root_d_m + o.direction * s);
+        let root = self.f_normal + self.psi_dd * d;
+        let added: f64 = o
+            .added_masses
+            .iter()
+            .filter(|(at, _)| *at > s)
+            .map(|(at, m)| m * (root + o.direction * self.psi_dd * (at - s)) * (at - s))
+            .sum();
+        self.mass_per_length_kg_m * (root * length.powi(2) / 2.0 + o.direction * self.psi_dd * length.powi(3) / 3.0)
+            + added
+    }
+
+    /// The axial force at `s` from overhang `o`'s root, carrying what lies beyond: the load along
+    /// the string less the centripetal ψ̇² r of each part, N.
+    fn axial(&self, o: &Overhang, s: f64) -> f64 {
+        let along = |distance_from_root: f64| {
+            let d = o.root_d_m + o.direction * distance_from_root;
+            self.f_along - self.psi_d_squared * d
+        };
+        let length = o.length_m - s;
+        let added: f64 = o.added_masses.iter().filter(|(at, _)| *at > s).map(|(at, m)| m * along(*at)).sum();
+        self.mass_per_length_kg_m * length * along(s + 0.5 * length) + added
     }
 }
 
@@ -225,21 +337,40 @@ pub struct StringSummary {
     /// Its largest bending stress over that yield strength.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stress_to_yield: Option<f64>,
+    /// Largest normal stress along it, |N|/A + |M| c/I over its stations (module doc), Pa.
+    pub peak_stress_pa: f64,
+    /// Where, along the string from its hub-side end, m.
+    pub peak_stress_station_m: f64,
+    /// When, s.
+    pub peak_stress_time_s: f64,
+    /// `peak_stress_pa` over the yield strength.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_stress_to_yield: Option<f64>,
+}
+
+/// A held string's readings over a run, one per step.
+pub struct StringSeries<'a> {
+    /// Times, s.
+    pub t_s: &'a [f64],
+    /// Deflection of its far end, m.
+    pub tip_deflection_m: &'a [f64],
+    /// Largest bending stress at its hands, Pa.
+    pub stress_pa: &'a [f64],
+    /// Largest stress along it, Pa, and where, m.
+    pub peak_stress: &'a [[f64; 2]],
 }
 
 impl StringSummary {
-    /// The summary of a run's string at `fidelity` chosen as `choice` says, from its readings at
-    /// times `t_s`. The frequencies are those of the run's beam where it holds the string as a
+    /// The summary of a run's string at `fidelity` chosen as `choice` says, from its `readings`. The frequencies are those of the run's beam where it holds the string as a
     /// beam of its own (every fixed-interface mode is solved whatever the kept count), else of
     /// `model`'s fe string.
     pub fn of(
         model: &crate::model::Model,
         beam: &crate::beam::BeamModel,
         choice: crate::select::Choice,
-        t_s: &[f64],
-        tip_deflection_m: &[f64],
-        stress_pa: &[f64],
+        readings: &StringSeries,
     ) -> Result<Self, crate::beam::BeamError> {
+        let (t_s, tip_deflection_m, stress_pa) = (readings.t_s, readings.tip_deflection_m, readings.stress_pa);
         let frequencies_hz = match beam.member_modes() {
             Some(modes) => modes.frequencies_hz(),
             None => {
@@ -251,6 +382,11 @@ impl StringSummary {
 
         let (i, stress) =
             stress_pa.iter().enumerate().fold((0, 0.0_f64), |best, (i, s)| if *s > best.1 { (i, *s) } else { best });
+        let (k, peak) = readings
+            .peak_stress
+            .iter()
+            .enumerate()
+            .fold((0, [0.0, 0.0]), |best, (k, p)| if p[0] > best.1[0] { (k, *p) } else { best });
         let held = model.payload.string().expect("a string summary is of a held string");
         let (pipe, joints) = (&held.pipe.pipe, held.pipe.joints);
         Ok(StringSummary {
@@ -268,6 +404,10 @@ impl StringSummary {
             max_tip_deflection_m: tip_deflection_m.iter().map(|d| d.abs()).fold(0.0, f64::max),
             yield_strength_pa,
             stress_to_yield: yield_strength_pa.map(|y| stress / y),
+            peak_stress_pa: peak[0],
+            peak_stress_station_m: peak[1],
+            peak_stress_time_s: t_s.get(k).copied().unwrap_or(0.0),
+            peak_stress_to_yield: yield_strength_pa.map(|y| peak[0] / y),
         })
     }
 }
