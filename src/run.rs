@@ -399,6 +399,9 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     summary.model_reason = choice.reason;
     summary.sign_off = sign_off;
     if let Some(choice) = string_choice {
+        if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
+            series.string_peak_stress = peaks.peaks_over(&series.modal_q, series.modal_dofs).unwrap_or_default();
+        }
         let readings = crate::sensor::string::StringSeries {
             t_s: &series.t_s,
             tip_deflection_m: &series.string_tip_deflection_m,
@@ -559,7 +562,10 @@ fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
     let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
     series.string_tip_deflection_m.push(reading.tip_deflection_m);
     series.string_stress_pa.push(reading.max_bending_stress_pa);
-    series.string_peak_stress.push([reading.peak_stress_pa, reading.peak_station_m]);
+    // A flexible string's stations are read from the recorded q after the run, where it is kept.
+    if !(probe.is_flexible() && series.modal_dofs > 0) {
+        series.string_peak_stress.push(probe.peak_stress(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2));
+    }
 }
 
 /// Each sensor's reading at the scene's current state.

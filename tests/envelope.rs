@@ -138,8 +138,7 @@ fn the_runs_are_stratified_and_the_percentiles_are_the_runs() {
             (stress.peak_stress_pa, ["stress", "peak_stress_pa"]),
             (fatigue.damage_per_lift, ["fatigue", "damage_per_lift"]),
         ] {
-            let mut values: Vec<f64> =
-                runs.iter().map(|c| c["summary"][path[0]][path[1]].as_f64().unwrap()).collect();
+            let mut values: Vec<f64> = runs.iter().map(|c| c["summary"][path[0]][path[1]].as_f64().unwrap()).collect();
             values.sort_by(f64::total_cmp);
             let type7 = |p: f64| {
                 let h = p * 7.0;

@@ -47,9 +47,16 @@ fn against_the_cantilevers(model: &Model, arm: &ArmModel) -> (f64, f64) {
         let expected = w * t * t / 2.0 * c_over_i;
         worst = worst.max((sigma - expected).abs() / root);
     }
-    let reading = probe.read(&ArmState { hub, q: &q, qd: &zero, qdd: &zero }, g);
-    assert!((reading.peak_stress_pa - root).abs() <= 0.01 * root, "peak {} vs {root} Pa", reading.peak_stress_pa);
-    (worst, reading.peak_station_m)
+    let [peak, station] = probe.peak_stress(&ArmState { hub, q: &q, qd: &zero, qdd: &zero }, g);
+    assert!((peak - root).abs() <= 0.01 * root, "peak {peak} vs {root} Pa");
+    // Read many steps at once from a history of q, a flexible string gives the same.
+    if let Some(peaks) = probe.peaks_over(&[q.as_slice(), q.as_slice()].concat(), q.len()) {
+        assert_eq!(peaks.len(), 2);
+        for p in peaks {
+            assert!((p[0] - peak).abs() <= 1e-12 * peak && p[1] == station, "{p:?} vs {peak}, {station}");
+        }
+    }
+    (worst, station)
 }
 
 #[test]

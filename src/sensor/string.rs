@@ -48,14 +48,15 @@ const OVERHANG_STATIONS: usize = 10;
 enum Form {
     /// A beam of its own: the deflection rows of centreline points and of its far end, and the
     /// curvature rows at its hands, over q.
-    /// And its stations (hub-frame x) with the rows of their axial strain and curvature, one
-    /// station after another in `station_rows`.
+    /// And its elements' ends (hub-frame x) with, per element, the rows of its axial strain and
+    /// of its curvature at either end, row after row over q in `element_rows` (three rows an
+    /// element: read with no allocation, every step).
     Flexible {
         centreline: Vec<(f64, DVector<f64>, DVector<f64>)>,
         tip_v: DVector<f64>,
         curvature: Vec<DVector<f64>>,
-        stations_m: Vec<f64>,
-        station_rows: nalgebra::DMatrix<f64>,
+        ends_m: Vec<[f64; 2]>,
+        element_rows: Vec<f64>,
     },
     /// Riding on the arm's section at its centre, with the overhang beyond each outermost hand.
     Rigid { centre_m: f64, rows: StationRows, mass_per_length_kg_m: f64, overhangs: Vec<Overhang> },
@@ -79,10 +80,6 @@ pub struct StringReading {
     pub tip_deflection_m: f64,
     /// Largest bending stress at its hands, Pa.
     pub max_bending_stress_pa: f64,
-    /// Largest |N|/A + |M| c/I over its stations, Pa.
-    pub peak_stress_pa: f64,
-    /// Where, along the string from its hub-side end, m.
-    pub peak_station_m: f64,
 }
 
 /// Points of the centreline the recording draws.
@@ -111,20 +108,16 @@ impl StringProbe {
                     .collect();
                 let tip_v = project(&member.point_rows(ends_m[1], n)[1]);
                 let curvature = member.clamp_curvature_rows(n).iter().map(|(_, row)| project(row)).collect();
-                let (mut stations_m, mut rows) = (Vec::new(), Vec::new());
+                let (mut ends, mut element_rows) = (Vec::new(), Vec::new());
                 for (e, element) in member.elements.iter().enumerate() {
-                    let [u0, ..] = member.element_rows(e, 0.0, n);
-                    let [u1, ..] = member.element_rows(e, 1.0, n);
-                    let strain = project(&((u1 - u0) / element.length_m));
-                    for xi in [0.0, 1.0] {
-                        let [.., kappa] = member.element_rows(e, xi, n);
-                        stations_m.push(element.x0_m + xi * element.length_m);
-                        rows.push(strain.transpose());
-                        rows.push(project(&kappa).transpose());
+                    let [u0, .., kappa0] = member.element_rows(e, 0.0, n);
+                    let [u1, .., kappa1] = member.element_rows(e, 1.0, n);
+                    for row in [(u1 - u0) / element.length_m, kappa0, kappa1] {
+                        element_rows.extend_from_slice(project(&row).as_slice());
                     }
+                    ends.push([element.x0_m, element.x0_m + element.length_m]);
                 }
-                let station_rows = nalgebra::DMatrix::from_rows(&rows);
-                Form::Flexible { centreline, tip_v, curvature, stations_m, station_rows }
+                Form::Flexible { centreline, tip_v, curvature, ends_m: ends, element_rows }
             }
             None => {
                 let centre_m = held.centre_m();
@@ -190,38 +183,84 @@ impl StringProbe {
                 (v + (self.ends_m[1] - centre_m) * phi, root.fold(0.0, f64::max))
             }
         };
-        let (peak_station_m, peak_stress_pa) =
-            self.stresses_pa(state, g).into_iter().fold((0.0, 0.0), |best, s| if s.1 > best.1 { s } else { best });
-        StringReading { tip_deflection_m, max_bending_stress_pa, peak_stress_pa, peak_station_m }
+        StringReading { tip_deflection_m, max_bending_stress_pa }
+    }
+
+    /// The largest |N|/A + |M| c/I over the stations at `state` under gravity `g`, Pa, and its
+    /// station along the string from its hub-side end, m.
+    pub fn peak_stress(&self, state: &ArmState, g: f64) -> [f64; 2] {
+        let mut peak = [0.0, 0.0];
+        self.each_stress(state, g, |(x, sigma)| {
+            if sigma > peak[0] {
+                peak = [sigma, x];
+            }
+        });
+        peak
+    }
+
+    /// [`Self::peak_stress`] of a flexible string at every step of a run from its elastic
+    /// coordinates `q_history` (`dofs` a step, one step after another), a few hundred steps at
+    /// a time as one matrix product: a modal string's rows over q cost a tenth of the run read
+    /// one step at a time. `None` for a rigid string, whose stations need the step's rates.
+    pub fn peaks_over(&self, q_history: &[f64], dofs: usize) -> Option<Vec<[f64; 2]>> {
+        const CHUNK: usize = 256;
+        let Form::Flexible { ends_m, element_rows, .. } = &self.form else { return None };
+        let rows = nalgebra::DMatrix::from_row_slice(3 * ends_m.len(), dofs, element_rows);
+        let mut values = nalgebra::DMatrix::zeros(rows.nrows(), CHUNK);
+        let mut peaks = Vec::with_capacity(q_history.len() / dofs.max(1));
+        for chunk in q_history.chunks(CHUNK * dofs) {
+            let steps = chunk.len() / dofs;
+            let q = nalgebra::DMatrixView::from_slice(chunk, dofs, steps);
+            values.columns_mut(0, steps).gemm(1.0, &rows, &q, 0.0);
+            for k in 0..steps {
+                let mut peak = [0.0, 0.0];
+                for (ends, v) in ends_m.iter().zip(values.column(k).as_slice().chunks_exact(3)) {
+                    let axial = self.youngs_modulus_pa * v[0].abs();
+                    for (x, kappa) in ends.iter().zip(&v[1..]) {
+                        let sigma = axial + self.stress_per_curvature_pa_m * kappa.abs();
+                        if sigma > peak[0] {
+                            peak = [sigma, x - self.ends_m[0]];
+                        }
+                    }
+                }
+                peaks.push(peak);
+            }
+        }
+        Some(peaks)
     }
 
     /// |N|/A + |M| c/I at each of the string's stations at `state` under gravity `g`: (station
     /// along the string from its hub-side end, m; σ, Pa).
     pub fn stresses_pa(&self, state: &ArmState, g: f64) -> Vec<(f64, f64)> {
+        let mut out = Vec::new();
+        self.each_stress(state, g, |station| out.push(station));
+        out
+    }
+
+    /// Calls `f` with each station's (station, σ) as [`Self::stresses_pa`] gives them.
+    fn each_stress(&self, state: &ArmState, g: f64, mut f: impl FnMut((f64, f64))) {
         match &self.form {
-            Form::Flexible { stations_m, station_rows, .. } => {
-                let values = station_rows * state.q;
-                stations_m
-                    .iter()
-                    .zip(values.as_slice().chunks_exact(2))
-                    .map(|(x, v)| {
-                        let sigma = self.youngs_modulus_pa * v[0].abs() + self.stress_per_curvature_pa_m * v[1].abs();
-                        (x - self.ends_m[0], sigma)
-                    })
-                    .collect()
+            Form::Flexible { ends_m, element_rows, .. } => {
+                let q = state.q.as_slice();
+                let dot = |row: &[f64]| row.iter().zip(q).map(|(a, b)| a * b).sum::<f64>();
+                for (ends, rows) in ends_m.iter().zip(element_rows.chunks_exact(3 * q.len())) {
+                    let (strain, kappa) = rows.split_at(q.len());
+                    let axial = self.youngs_modulus_pa * dot(strain).abs();
+                    for (x, row) in ends.iter().zip(kappa.chunks_exact(q.len())) {
+                        f((x - self.ends_m[0], axial + self.stress_per_curvature_pa_m * dot(row).abs()));
+                    }
+                }
             }
             Form::Rigid { centre_m, overhangs, .. } => {
                 let loads = self.rigid_loads(state, g);
-                let mut out = Vec::with_capacity(overhangs.len() * (OVERHANG_STATIONS + 1));
                 for o in overhangs {
                     for j in 0..=OVERHANG_STATIONS {
                         let s = o.length_m * j as f64 / OVERHANG_STATIONS as f64;
                         let sigma = self.stress_per_moment_pa_per_n_m * loads.moment(o, s).abs()
                             + self.per_axial_force_per_m2 * loads.axial(o, s).abs();
-                        out.push((centre_m + o.root_d_m + o.direction * s - self.ends_m[0], sigma));
+                        f((centre_m + o.root_d_m + o.direction * s - self.ends_m[0], sigma));
                     }
                 }
-                out
             }
         }
     }
