@@ -9,6 +9,7 @@ use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use pipearm::export::{ExportError, write_tables};
 use pipearm::run::{Series, run};
 use pipearm::scenario::Scenario;
+use pipearm::stress::Fibre;
 
 fn manifest() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -41,6 +42,7 @@ fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec
         columns.push(("string_slip[m]".into(), series.string_slip_m.clone()));
         columns.push(("jaw_sinking[m]".into(), series.jaw_sinking_m.clone()));
     }
+    sign_off_columns(series, &mut columns);
     for (k, kind) in ["kinetic", "strain", "gravity"].iter().enumerate() {
         columns.push((format!("energy.{kind}[J]"), series.energies_j.iter().map(|e| e[k]).collect()));
     }
@@ -55,6 +57,43 @@ fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec
         }
     }
     columns
+}
+
+/// The sign-off's columns as docs/export.md lists them: σ at the station and fibre of the run's
+/// largest |σ| (the last of equals), the pivot's force turned from the hub frame to the world's,
+/// the cylinder pin's, and each hand's grip, minus the string's load on it.
+fn sign_off_columns(series: &Series, columns: &mut Vec<(String, Vec<f64>)>) {
+    let stress = &series.stress;
+    let steps = series.t_s.len();
+    let value = |k: usize, at: usize| f64::from(stress.values[k * stress.width + at]);
+    let mut worst = None;
+    let mut largest = f64::MIN;
+    for (i, extremes) in stress.extremes.iter().enumerate() {
+        for (fibre, e) in [Fibre::Upper, Fibre::Lower].into_iter().zip(extremes) {
+            let peak = e.max.abs().max(e.min.abs());
+            if peak >= largest {
+                (largest, worst) = (peak, Some((i, fibre)));
+            }
+        }
+    }
+    let Some((i, fibre)) = worst else { return };
+    columns.push(("stress.worst[Pa]".into(), (0..steps).map(|k| stress.stress_pa(i, fibre, k)).collect()));
+    let world = |k: usize, axis: usize| {
+        let (s, c) = series.hub_angle_rad[k].sin_cos();
+        let (x, y) = (value(k, stress.pivot_index), value(k, stress.pivot_index + 1));
+        [c * x - s * y, s * x + c * y][axis]
+    };
+    columns.push(("pivot.force.x[N]".into(), (0..steps).map(|k| world(k, 0)).collect()));
+    columns.push(("pivot.force.y[N]".into(), (0..steps).map(|k| world(k, 1)).collect()));
+    if let Some(at) = stress.cylinder_index {
+        columns.push(("cylinder_pin.force.x[N]".into(), (0..steps).map(|k| value(k, at)).collect()));
+        columns.push(("cylinder_pin.force.y[N]".into(), (0..steps).map(|k| value(k, at + 1)).collect()));
+    }
+    for (hand, at) in &stress.hands {
+        for (j, name) in ["force.axial[N]", "force.transverse[N]", "moment[N*m]"].into_iter().enumerate() {
+            columns.push((format!("grip.{hand}.{name}"), (0..steps).map(|k| -value(k, at + j)).collect()));
+        }
+    }
 }
 
 /// A CSV table read back: its header fields and its columns, each value parsed as `f64`.
@@ -208,7 +247,14 @@ fn run_csv_on_the_command_line() {
     left.sort();
     assert_eq!(
         left,
-        ["default.decimated.csv", "default.decimated.parquet", "default.steps.csv", "default.steps.parquet"]
+        [
+            "default.decimated.csv",
+            "default.decimated.parquet",
+            "default.steps.csv",
+            "default.steps.parquet",
+            "default.stress.svg"
+        ],
+        "the tables and, beside them, the stress envelope's chart"
     );
     std::fs::remove_dir_all(&out).ok();
 

@@ -107,10 +107,10 @@ fn both_sides_of_a_change_of_section_carry_the_joints_moment_over_their_own_modu
     // carried bodies beyond, the string at its centre), N = 0, and σ = M c / I on either side
     // with that side's I.
     let mut model = held_still(0.0);
-    let segment = model.robot.arm.segments[0].clone();
+    let segment = model.robot.arm.segments[0];
     let (b, h, length): (f64, f64, f64) = (0.25, 0.5, segment.length_m);
     let joint = length / 2.0;
-    let mut inner = segment.clone();
+    let mut inner = segment;
     inner.length_m = joint;
     inner.section = SectionShape::HollowRectangle { width_m: b, depth_m: h, wall_m: 0.02 };
     let mut outer = segment;
