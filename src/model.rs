@@ -58,13 +58,11 @@ pub struct Model {
 pub struct SignOffChecks {
     /// Design factor on stress, applied to utilisation and to the fatigue ranges.
     pub stress_factor: f64,
-    /// Whether the scenario asks for utilisation (it has a `[checks]` table).
-    pub utilisation_asked: bool,
 }
 
 impl Default for SignOffChecks {
     fn default() -> Self {
-        SignOffChecks { stress_factor: 1.0, utilisation_asked: false }
+        SignOffChecks { stress_factor: 1.0 }
     }
 }
 

@@ -47,6 +47,9 @@ pub struct Series {
     pub string_tip_deflection_m: Vec<f64>,
     /// Largest bending stress at the held string's hands, Pa (empty without a string).
     pub string_stress_pa: Vec<f64>,
+    /// Largest normal stress along the held string, axial and bending, Pa, and its station from
+    /// the string's hub-side end, m (empty without a string).
+    pub string_peak_stress: Vec<[f64; 2]>,
     /// Kinetic, strain and gravity energy, J.
     pub energies_j: Vec<[f64; 3]>,
     /// Elastic coordinates q (modal and rigid models only; empty for fe), `modal_dofs` per step
@@ -396,9 +399,16 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     summary.model_reason = choice.reason;
     summary.sign_off = sign_off;
     if let Some(choice) = string_choice {
-        let (t, tip, stress) = (&series.t_s, &series.string_tip_deflection_m, &series.string_stress_pa);
-        summary.string =
-            Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, t, tip, stress)?);
+        if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
+            series.string_peak_stress = peaks.peaks_over(&series.modal_q, series.modal_dofs).unwrap_or_default();
+        }
+        let readings = crate::sensor::string::StringSeries {
+            t_s: &series.t_s,
+            tip_deflection_m: &series.string_tip_deflection_m,
+            stress_pa: &series.string_stress_pa,
+            peak_stress: &series.string_peak_stress,
+        };
+        summary.string = Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, &readings)?);
     }
     Ok(summary)
 }
@@ -552,6 +562,10 @@ fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
     let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
     series.string_tip_deflection_m.push(reading.tip_deflection_m);
     series.string_stress_pa.push(reading.max_bending_stress_pa);
+    // A flexible string's stations are read from the recorded q after the run, where it is kept.
+    if !(probe.is_flexible() && series.modal_dofs > 0) {
+        series.string_peak_stress.push(probe.peak_stress(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2));
+    }
 }
 
 /// Each sensor's reading at the scene's current state.

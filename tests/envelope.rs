@@ -130,6 +130,26 @@ fn the_runs_are_stratified_and_the_percentiles_are_the_runs() {
         }
         assert_eq!(group.sensitivity[0].method, "regression");
         assert_eq!(group.sensitivity[0].ranking.len(), 2);
+        // The sign-off's figures, the same type-7 percentiles of the runs' own.
+        let stress = group.stress.expect("the default arm signs off");
+        let fatigue = group.fatigue.expect("the default arm has an S-N curve");
+        for (got, path) in [
+            (stress.utilisation.expect("the default arm has a yield strength"), ["stress", "utilisation"]),
+            (stress.peak_stress_pa, ["stress", "peak_stress_pa"]),
+            (fatigue.damage_per_lift, ["fatigue", "damage_per_lift"]),
+        ] {
+            let mut values: Vec<f64> = runs.iter().map(|c| c["summary"][path[0]][path[1]].as_f64().unwrap()).collect();
+            values.sort_by(f64::total_cmp);
+            let type7 = |p: f64| {
+                let h = p * 7.0;
+                let (i, f) = (h.floor() as usize, h - h.floor());
+                values[i] + f * (values[(i + 1).min(7)] - values[i])
+            };
+            assert_eq!(got.max, values[7], "{path:?}");
+            for (value, p) in [(got.p5, 0.05), (got.p50, 0.5), (got.p95, 0.95), (got.p99, 0.99)] {
+                assert!((value - type7(p)).abs() <= 1e-9 * values[7], "{path:?} p{p}: {value} against {}", type7(p));
+            }
+        }
     }
     assert!(envelope.groups[1].weight_n > envelope.groups[0].weight_n);
 }

@@ -4,7 +4,10 @@
 use std::collections::BTreeSet;
 use std::path::Path;
 
-use pipearm::record::{TIP_DEFLECTION_ENTITY, force_entity, write_recording};
+use pipearm::record::{
+    CENTRELINE_ENTITY, LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, TIP_DEFLECTION_ENTITY, WORST_STATION_ENTITY,
+    YIELD_ENTITY, force_entity, write_recording,
+};
 use pipearm::run::{RunOptions, run_with};
 use pipearm::scenario::Scenario;
 
@@ -23,9 +26,10 @@ fn read_back(path: &Path, wanted: &str) -> (BTreeSet<String>, Vec<f64>, Vec<f64>
         let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
         let entity = chunk.entity_path().to_string();
         let entity = entity.trim_start_matches('/').to_string();
-        if entity == wanted {
+        let timeline = chunk.timelines().values().find(|t| t.timeline().name().as_str() == "sim_time");
+        // A static chunk (a series' style) has no times and no scalars.
+        if let (true, Some(timeline)) = (entity == wanted, timeline) {
             let components: Vec<_> = chunk.component_descriptors().map(|d| d.component).collect();
-            let timeline = chunk.timelines().values().find(|t| t.timeline().name().as_str() == "sim_time").unwrap();
             times.extend(timeline.times_raw().iter().map(|ns| *ns as f64 * 1e-9));
             for component in components.into_iter().filter(|c| c.as_str().contains("scalars")) {
                 for slice in chunk.iter_slices::<f64>(component) {
@@ -143,8 +147,9 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
         }
     }
     let classes = classes.join(" ");
-    // Contact force, tip deflection, drive torque and the held string's tip deflection.
-    for (class, count) in [("\"3D\"", 1), ("\"TimeSeries\"", 4), ("\"TextLog\"", 1)] {
+    // Contact force, tip deflection, drive torque, the held string's tip deflection, the stress at
+    // the worst station and the pin loads.
+    for (class, count) in [("\"3D\"", 1), ("\"TimeSeries\"", 6), ("\"TextLog\"", 1)] {
         assert_eq!(classes.matches(class).count(), count, "{class} in {classes}");
     }
     let root = root.expect("the viewport has a root container");
@@ -168,4 +173,41 @@ fn uuid_path(column: &dyn re_chunk::external::arrow::array::Array) -> String {
     let bytes = column.as_list::<i32>().values().as_fixed_size_list().values().as_primitive::<UInt8Type>().values();
     let hex: String = bytes.iter().map(|b| format!("{b:02x}")).collect();
     format!("{}-{}-{}-{}-{}", &hex[..8], &hex[8..12], &hex[12..16], &hex[16..20], &hex[20..])
+}
+
+/// The sign-off in the recording: the worst station's stress peaks at the summary's figure (the
+/// peak step is kept whatever the record rate), its yield line is the segment's yield over the
+/// design factor, the pivot's force peaks at the summary's, and the centreline is shaded, marked
+/// and explained by a legend.
+#[test]
+fn the_recording_plots_the_worst_stress_against_its_yield_and_the_pin_loads() {
+    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+    let path = std::env::temp_dir().join(format!("pipearm-stress-recording-{}.rrd", std::process::id()));
+    write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
+    let sign_off = summary.sign_off.as_ref().expect("the default run signs off");
+    let stress = &sign_off.stress;
+    let (paths, sigma, _) = read_back(&path, WORST_STATION_ENTITY);
+    let (_, tension, _) = read_back(&path, &format!("{YIELD_ENTITY}/tension"));
+    let (_, pivot, _) = read_back(&path, PIVOT_ENTITY);
+    std::fs::remove_file(&path).ok();
+    for entity in [CENTRELINE_ENTITY, LEGEND_ENTITY, PEAK_ENTITY, "plots/pins/hands/hand"] {
+        assert!(paths.contains(entity), "{entity} missing from {paths:?}");
+    }
+    let utilisation = stress.utilisation.expect("the default arm has a yield strength");
+    let peak = sigma.iter().map(|s| s.abs()).fold(0.0, f64::max);
+    // The series holds single-precision section forces: seven digits.
+    let worst = stress.segments.iter().find(|s| s.utilisation == Some(utilisation)).unwrap();
+    assert!((peak - worst.peak_stress_pa).abs() <= 1e-5 * worst.peak_stress_pa, "{peak} vs {}", worst.peak_stress_pa);
+    let yield_pa = worst.yield_strength_pa.unwrap() / stress.stress_factor;
+    assert_eq!(tension, [yield_pa, yield_pa]);
+    assert!((utilisation - peak / yield_pa).abs() <= 1e-5 * utilisation);
+    let pivot_peak = pivot.iter().copied().fold(0.0, f64::max);
+    assert!(pivot_peak <= sign_off.pins.pivot.peak_force_n * (1.0 + 1e-6));
+    assert!(
+        pivot_peak >= 0.9 * sign_off.pins.pivot.peak_force_n,
+        "{pivot_peak} vs {}",
+        sign_off.pins.pivot.peak_force_n
+    );
 }

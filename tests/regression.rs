@@ -63,6 +63,20 @@ fn a_heavier_string_fails_the_check() {
 }
 
 #[test]
+fn a_weaker_steel_fails_the_check_on_utilisation_alone() {
+    // The same run against a yield 10 % lower: utilisation = |σ| / yield rises by 1/0.9 (11 %,
+    // past its 2 % tolerance), the stress itself is unchanged.
+    let mut s = scenario("default");
+    for segment in &mut s.model.robot.arm.segments {
+        if let Some(y) = &mut segment.checks.yield_strength {
+            y.strength_pa *= 0.9;
+        }
+    }
+    let failed = failures(&s, "default");
+    assert_eq!(failed, ["stress.utilisation".to_string()], "{failed:?}");
+}
+
+#[test]
 fn bless_accepts_a_change_and_keeps_the_tolerances() {
     let dir = std::env::temp_dir().join(format!("pipearm-bless-{}", std::process::id()));
     let mut s = scenario("default");

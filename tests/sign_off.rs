@@ -138,15 +138,15 @@ fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
     let cylinder = pins.cylinder.as_ref().unwrap();
     // The arm sags and the pin moves with it (deflection over the pin's lever, ~1e-3).
     assert!((cylinder.peak_force_n / rod - 1.0).abs() < 3e-3, "rod {} vs {rod}", cylinder.peak_force_n);
-    for (world, along) in cylinder.world_n.iter().zip(unit) {
-        assert!((world - rod * along).abs() < 3e-3 * rod, "{:?}", cylinder.world_n);
+    for (world, u) in cylinder.world_n.iter().zip(unit) {
+        assert!((world - rod * u).abs() < 3e-3 * rod, "{:?}", cylinder.world_n);
     }
     // The pivot takes the rest: weight minus the rod's push.
     let pivot = [-rod * unit[0], weight - rod * unit[1]];
     let pivot_magnitude = pivot[0].hypot(pivot[1]);
     assert!((pins.pivot.peak_force_n / pivot_magnitude - 1.0).abs() < 3e-3, "{:?} vs {pivot:?}", pins.pivot);
-    for k in 0..2 {
-        assert!((pins.pivot.world_n[k] - pivot[k]).abs() < 3e-3 * rod, "{:?} vs {pivot:?}", pins.pivot.world_n);
+    for (world, expected) in pins.pivot.world_n.iter().zip(pivot) {
+        assert!((world - expected).abs() < 3e-3 * rod, "{:?} vs {pivot:?}", pins.pivot.world_n);
     }
 }
 

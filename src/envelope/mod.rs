@@ -248,7 +248,12 @@ fn table(envelope: &Envelope) -> String {
             [("peak_force_n".to_string(), g.peak_force_n), ("peak_force_per_weight".into(), g.peak_force_per_weight)]
                 .into_iter()
                 .chain(g.pairs.iter().map(|p| (format!("{}.peak_force_n", p.pair), p.peak_force_n)))
-                .chain([("residual_amplitude_m".to_string(), g.residual_amplitude_m)]);
+                .chain([("residual_amplitude_m".to_string(), g.residual_amplitude_m)])
+                .chain(g.stress.iter().flat_map(|s| {
+                    std::iter::once(("stress.peak_stress_pa".to_string(), s.peak_stress_pa))
+                        .chain(s.utilisation.map(|u| ("stress.utilisation".to_string(), u)))
+                }))
+                .chain(g.fatigue.map(|f| ("fatigue.damage_per_lift".to_string(), f.damage_per_lift)));
         for (figure, p) in figures {
             out += &format!(
                 "{},{},{},{},{},{},{},{},{},{figure},{},{},{},{},{}\n",

@@ -1,5 +1,6 @@
 //! An envelope's figures per group: percentiles of each pair's peak force, of the largest peak
-//! force and of the residual amplitude over the group's runs, and the sensitivity of the largest
+//! force, of the residual amplitude and of the sign-off's utilisation, peak stress and fatigue
+//! damage per lift over the group's runs, and the sensitivity of the largest
 //! peak force and of the residual amplitude to each spread key, ranked.
 
 use serde::Serialize;
@@ -117,8 +118,38 @@ pub struct GroupEnvelope {
     pub pairs: Vec<PairEnvelope>,
     /// The residual tip amplitude after the drive stops, m.
     pub residual_amplitude_m: Percentiles,
+    /// The arm's stresses over the runs (absent where no run signed off).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stress: Option<StressEnvelope>,
+    /// The fatigue damage of one lift over the runs (absent where no run checked fatigue).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fatigue: Option<FatigueEnvelope>,
     /// Sensitivity of the largest peak force, then of the residual amplitude.
     pub sensitivity: Vec<Sensitivity>,
+}
+
+/// The summary's `stress` over a group's runs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct StressEnvelope {
+    /// Largest |σ| along the arm, Pa (`stress.peak_stress_pa`).
+    pub peak_stress_pa: Percentiles,
+    /// Largest utilisation (`stress.utilisation`), over the runs that give one (absent without
+    /// a yield strength).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub utilisation: Option<Percentiles>,
+}
+
+/// The summary's `fatigue` over a group's runs.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FatigueEnvelope {
+    /// Damage of one lift at the worst place (`fatigue.damage_per_lift`).
+    pub damage_per_lift: Percentiles,
+}
+
+/// Percentiles of the finite values among `values`, `None` if there are none.
+fn percentiles_of_some(values: impl Iterator<Item = Option<f64>>) -> Option<Percentiles> {
+    let finite: Vec<f64> = values.flatten().filter(|v| v.is_finite()).collect();
+    (!finite.is_empty()).then(|| Percentiles::of(&finite))
 }
 
 /// What one run gave.
@@ -126,6 +157,9 @@ struct RunFigures {
     payload_kg: f64,
     pairs: Vec<(String, f64)>,
     residual_m: f64,
+    peak_stress_pa: Option<f64>,
+    utilisation: Option<f64>,
+    damage_per_lift: Option<f64>,
 }
 
 impl RunFigures {
@@ -138,7 +172,14 @@ impl RunFigures {
                 Some((name, number(&format!("summary.pairs.{i}.peak_force_n")).unwrap_or(f64::NAN)))
             })
             .collect();
-        Some(RunFigures { payload_kg, pairs, residual_m: number("summary.residual.amplitude_m").unwrap_or(f64::NAN) })
+        Some(RunFigures {
+            payload_kg,
+            pairs,
+            residual_m: number("summary.residual.amplitude_m").unwrap_or(f64::NAN),
+            peak_stress_pa: number("summary.stress.peak_stress_pa"),
+            utilisation: number("summary.stress.utilisation"),
+            damage_per_lift: number("summary.fatigue.damage_per_lift"),
+        })
     }
 
     fn peak_force_n(&self) -> f64 {
@@ -197,6 +238,12 @@ pub fn group_envelope(
         residual_amplitude_m: Percentiles::of(
             &ran.iter().map(|r| r.residual_m).filter(|r| r.is_finite()).collect::<Vec<_>>(),
         ),
+        stress: percentiles_of_some(ran.iter().map(|r| r.peak_stress_pa)).map(|peak_stress_pa| StressEnvelope {
+            peak_stress_pa,
+            utilisation: percentiles_of_some(ran.iter().map(|r| r.utilisation)),
+        }),
+        fatigue: percentiles_of_some(ran.iter().map(|r| r.damage_per_lift))
+            .map(|damage_per_lift| FatigueEnvelope { damage_per_lift }),
         sensitivity,
     }
 }

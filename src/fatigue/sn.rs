@@ -115,7 +115,6 @@ impl SnCurve {
     /// Cycles to failure at a constant range `range_pa` (infinite below a cut-off, and for a
     /// zero range).
     pub fn cycles_to_failure(&self, range_pa: f64) -> f64 {
-        // A NaN range is no cycle either.
         if range_pa.is_nan() || range_pa <= 0.0 {
             return f64::INFINITY;
         }

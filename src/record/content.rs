@@ -4,9 +4,10 @@
 
 use std::borrow::Cow;
 
-use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
-use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TextLogLevel, TimeColumn, TimePoint};
+use rerun::log::{Chunk, RowId};
+use rerun::{RecordingStreamResult, TextLogLevel, TimeColumn};
 
+use super::writer::{Writer, centreline_points};
 use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, Recorded, force_entity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::model::StructureShape;
@@ -81,44 +82,7 @@ fn pairs(run: &Recorded) -> Vec<Pair> {
     }
 }
 
-struct Writer<'a> {
-    chunks: Vec<Chunk>,
-    run: &'a Recorded<'a>,
-    /// Steps the plots keep.
-    keep: &'a [bool],
-}
-
 impl Writer<'_> {
-    /// Columns of `entity` at the times of `index` (what `RecordingStream::send_columns` sends).
-    fn send_columns(
-        &mut self,
-        entity: &str,
-        index: TimeColumn,
-        columns: impl IntoIterator<Item = SerializedComponentColumn>,
-    ) -> RecordingStreamResult<()> {
-        let indexes = std::iter::once((*index.timeline().name(), index)).collect();
-        let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
-        self.chunks.push(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
-        Ok(())
-    }
-
-    /// A static archetype of `entity`.
-    fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RecordingStreamResult<()> {
-        self.chunks.push(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
-        Ok(())
-    }
-
-    /// The kept steps of `values`.
-    fn kept<T: Copy>(&self, values: impl IntoIterator<Item = T>) -> Vec<T> {
-        values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
-    }
-
-    fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
-        let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
-        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
-        self.send_columns(entity, times, columns)
-    }
-
     /// A pad's force at the kept steps with each impact's interpolated peak inserted at its
     /// time, so the plotted series peaks at the reported peak.
     fn send_force(&mut self, entity: &str, forces: &[f64], impacts: &[Impact]) -> RecordingStreamResult<()> {
@@ -164,6 +128,7 @@ impl Writer<'_> {
             let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
             self.send_force(&force_entity(name), forces, impacts)?;
         }
+        self.sign_off_plots(super::stress::Shading::of(run).as_ref())?;
         for sensor in &s.sensors {
             for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
                 let entity = crate::compare::sensor_entity(&sensor.sensor.name, channel.name);
@@ -246,11 +211,20 @@ impl Writer<'_> {
         let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
         let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
         self.send_columns("world/pads", times(), columns.chain(fill))?;
-        let magnified = frames.iter().map(|f| centreline_points(layout, f, magnify));
-        let columns = rerun::LineStrips3D::update_fields()
-            .with_strips(magnified.collect::<Vec<_>>())
-            .columns(std::iter::repeat_n(1, frames.len()))?;
-        self.send_columns(centreline, times(), columns)?;
+        let note = match super::stress::Shading::of(run) {
+            Some(shading) => {
+                self.shaded_centreline(&shading, layout, magnify)?;
+                format!("{note}; {}", shading.note())
+            }
+            None => {
+                let magnified = frames.iter().map(|f| centreline_points(layout, f, magnify));
+                let columns = rerun::LineStrips3D::update_fields()
+                    .with_strips(magnified.collect::<Vec<_>>())
+                    .columns(std::iter::repeat_n(1, frames.len()))?;
+                self.send_columns(centreline, times(), columns)?;
+                note
+            }
+        };
         if frames.iter().any(|f| !f.string_centreline.is_empty()) {
             let strips = frames.iter().map(|f| string_points(layout, f));
             let columns = rerun::LineStrips3D::update_fields()
@@ -420,19 +394,6 @@ fn group_pieces(layout: &SceneLayout) -> Vec<(String, Vec<usize>)> {
         }
     }
     groups
-}
-
-fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[f32; 3]> {
-    let (s, c) = frame.hub_angle_rad.sin_cos();
-    let p = layout.pivot_m;
-    frame
-        .centreline
-        .iter()
-        .map(|(x, [u, v])| {
-            let (bx, by) = (x + magnify * u, magnify * v);
-            [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
-        })
-        .collect()
 }
 
 /// The held string's deformed centreline at true scale, on its axis off the lift plane.

@@ -6,7 +6,9 @@
 //! | entity | what |
 //! |---|---|
 //! | `world/…` | 3D: hub, arm elements, hand, gripper, jaws, string, pads, ground (boxes, m, Y up) |
-//! | `world/centreline` | the deformed centreline, its deflection magnified (the factor in `events`) |
+//! | `world/centreline` | the deformed centreline, its deflection magnified (the factor in `events`); with the sign-off, shaded per piece by utilisation (by \|σ\| against the run's peak without a yield strength) |
+//! | `world/stress_legend` | the shading's colour bar, labelled, beyond the arm's reach |
+//! | `world/stress_peak` | a marker at the worst station (the largest utilisation's, else the largest \|σ\|'s), labelled |
 //! | `world/contact_force` | every contact point with its force arrow (newtons per metre in `events`) |
 //! | `world/structures/<name>` | a rig structure |
 //! | `plots/contact_force/<side>-<obstacle>` | contact force per pair (`arm-<pad>`, `string-<structure>`), N |
@@ -18,6 +20,9 @@
 //! | `plots/energy/{kinetic,strain,gravity}` | J |
 //! | `plots/string_slip` | friction clamp slip, m |
 //! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
+//! | `plots/stress/worst_station` | σ at the worst station and fibre, Pa |
+//! | `plots/stress/yield/{tension,compression}` | ± yield / stress_factor there, Pa (where a yield strength is given) |
+//! | `plots/pins/{pivot,cylinder}`, `plots/pins/hands/<hand>` | pin and grip force magnitudes, N |
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time; a diverged run's guard message last |
 //! | `summary` | the run summary (JSON; not for a diverged run) |
 //!
@@ -36,9 +41,12 @@ mod content;
 mod layout;
 mod rrd;
 mod stream;
+mod stress;
+mod writer;
 
 pub use content::{arrow_scale_n_per_m, magnification};
 pub use stream::Viewer;
+pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, WORST_STATION_ENTITY, YIELD_ENTITY};
 
 use crate::run::{RunSummary, Series};
 

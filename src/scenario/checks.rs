@@ -37,6 +37,6 @@ impl Check<'_> {
                 ),
             ));
         }
-        Ok(SignOffChecks { stress_factor, utilisation_asked: true })
+        Ok(SignOffChecks { stress_factor })
     }
 }

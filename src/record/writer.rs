@@ -1,0 +1,70 @@
+//! The chunks of a recording as they are made: a run's columns at its kept steps, static
+//! archetypes, and the magnified centreline's points, shared by the plots and the scene
+//! ([`super::content`]) and the sign-off's ([`super::stress`]).
+
+use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
+use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TimeColumn, TimePoint};
+
+use super::Recorded;
+use crate::scene::{Frame, SceneLayout};
+
+/// A recording's chunks being made from `run`.
+pub(super) struct Writer<'a> {
+    /// The chunks so far.
+    pub(super) chunks: Vec<Chunk>,
+    /// The run.
+    pub(super) run: &'a Recorded<'a>,
+    /// Steps the plots keep.
+    pub(super) keep: &'a [bool],
+}
+
+impl Writer<'_> {
+    /// Columns of `entity` at the times of `index` (what `RecordingStream::send_columns` sends).
+    pub(super) fn send_columns(
+        &mut self,
+        entity: &str,
+        index: TimeColumn,
+        columns: impl IntoIterator<Item = SerializedComponentColumn>,
+    ) -> RecordingStreamResult<()> {
+        let indexes = std::iter::once((*index.timeline().name(), index)).collect();
+        let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
+        self.chunks.push(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
+        Ok(())
+    }
+
+    /// A static archetype of `entity`.
+    pub(super) fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RecordingStreamResult<()> {
+        self.chunks.push(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
+        Ok(())
+    }
+
+    /// Whether the plots keep step `k`.
+    pub(super) fn keeps(&self, k: usize) -> bool {
+        self.keep.get(k).copied().unwrap_or(false)
+    }
+
+    /// The kept steps of `values`.
+    pub(super) fn kept<T: Copy>(&self, values: impl IntoIterator<Item = T>) -> Vec<T> {
+        values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
+    }
+
+    pub(super) fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
+        let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
+        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
+        self.send_columns(entity, times, columns)
+    }
+}
+
+/// The magnified centreline of `frame`, world points.
+pub(super) fn centreline_points(layout: &SceneLayout, frame: &Frame, magnify: f64) -> Vec<[f32; 3]> {
+    let (s, c) = frame.hub_angle_rad.sin_cos();
+    let p = layout.pivot_m;
+    frame
+        .centreline
+        .iter()
+        .map(|(x, [u, v])| {
+            let (bx, by) = (x + magnify * u, magnify * v);
+            [(p[0] + c * bx - s * by) as f32, (p[1] + s * bx + c * by) as f32, p[2] as f32]
+        })
+        .collect()
+}
