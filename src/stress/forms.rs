@@ -79,11 +79,6 @@ impl Layout {
         self.z_len() + self.extra
     }
 
-    /// Never: a form has z at least.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-
     /// A form reading extra value `i` alone.
     pub fn extra_value(&self, i: usize) -> Form {
         let mut f = self.zero();
