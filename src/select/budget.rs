@@ -1,0 +1,207 @@
+//! The error a modal(n) arm expects on the scene's headline quantities: the modal truncation's
+//! own bound (the mode-acceleration argument of Craig and Kurdila, *Fundamentals of Structural
+//! Dynamics*, 2nd ed., §14.5).
+//!
+//! Every mode kept by the band rule lies below nothing the scene excites above it, so the modes
+//! left out answer the scene's loads quasi-statically: what modal(n) misses of a response is the
+//! truncated modes' share of its static value. For a load pattern b and an output row r over
+//! the FE DOFs, the static response is r K⁻¹ b = Σᵢ (r φᵢ)(φᵢᵀ b) / ωᵢ² over every clamped mode
+//! (mass-normalised, a complete basis of the arm's DOFs), and modal(n) keeps the first n terms.
+//! The loads are those the scene has: gravity on the arm's mass, the hub's angular acceleration
+//! (the inertia S θ̈ of the rigid rotation), a force at each pad's station and at a cylinder's
+//! pin. The outputs: the tip's deflection (its relative truncation under each load), and each
+//! pad's force, whose error follows from the point flexibility f the truncation leaves out at the
+//! pad: an impact's peak force goes as the square root of the contact's stiffness
+//! 1 / (1/k + f), so it is off by about ½ Δf / (1/k + f).
+//!
+//! The sums reuse the modes the run solves anyway: a few dot products per mode, nothing
+//! factorised (docs/fidelity.md measures it against a run).
+
+use crate::actuator::Actuator;
+use crate::beam::{BeamError, BeamModel, ModalBasis};
+use crate::model::Model;
+
+/// A load whose static tip deflection is below this share of its modes' terms in magnitude
+/// (they cancel: a pull along the arm) does not bend the tip, and its relative truncation means
+/// nothing.
+const NEGLIGIBLE_SHARE: f64 = 1e-3;
+
+/// One headline quantity's truncation: each mode's term, and what the error is relative to.
+struct Term {
+    /// The quantity, in words.
+    quantity: String,
+    /// (r φᵢ)(φᵢᵀ b) / ωᵢ² for every clamped mode, lowest first.
+    terms: Vec<f64>,
+    /// What a missing share is measured against.
+    scale: f64,
+    /// The factor from a missing share to the quantity's error (½ for an impact's force).
+    factor: f64,
+}
+
+impl Term {
+    fn error(&self, n: usize) -> f64 {
+        let missing: f64 = self.terms.iter().skip(n).sum();
+        self.factor * missing.abs() / self.scale.abs().max(f64::MIN_POSITIVE)
+    }
+}
+
+/// The modal truncation bound of a scene on its headline quantities.
+pub struct TruncationBound {
+    terms: Vec<Term>,
+}
+
+impl TruncationBound {
+    /// The bound's terms for `model` on its clamped `modes`.
+    pub fn new(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Self, BeamError> {
+        let per_mode = |r: &nalgebra::DVector<f64>, b: &nalgebra::DVector<f64>| -> Vec<f64> {
+            let (rp, bp) = (modes.shapes.tr_mul(r), modes.shapes.tr_mul(b));
+            modes.omegas_rad_s.iter().enumerate().map(|(i, w)| rp[i] * bp[i] / (w * w)).collect()
+        };
+        let [_, tip, _] = beam.point_rows(beam.length_m());
+        // The scene's own loads, scaled to what the scene applies (gravity in m/s², the hub's
+        // peak acceleration in rad/s²): their static tip deflections are in metres.
+        let loads = match &model.drive.actuator {
+            Actuator::Hydraulic(h) => held_at_the_pin(model, beam, &h.cylinder),
+            _ => held_at_the_hub(model, beam),
+        };
+        let mut terms = Vec::new();
+        let tips: Vec<(String, Vec<f64>)> = loads.iter().map(|(name, b)| (name.clone(), per_mode(&tip, b))).collect();
+        // Each load's missing share is measured against the largest static tip deflection the
+        // scene's loads give, a stand-in for its peak: a load that hardly bends the tip (gravity
+        // along the raised arm) is not judged against its own near-zero deflection.
+        let largest = tips.iter().map(|(_, t)| t.iter().sum::<f64>().abs()).fold(0.0, f64::max);
+        for (name, t) in tips {
+            terms.push(Term {
+                quantity: format!("tip deflection under {name}"),
+                terms: t,
+                scale: largest,
+                factor: 1.0,
+            });
+        }
+        for pad in &model.dampeners {
+            let [_, v, _] = beam.point_rows(pad.station_m);
+            let point = per_mode(&v, &v);
+            let stiffness = pad.law.force_n(1e-3, 0.0, 1.0) / 1e-3;
+            let flexibility: f64 = point.iter().sum();
+            terms.push(Term {
+                quantity: format!("peak force on {}", pad.name),
+                terms: point,
+                scale: 1.0 / stiffness.max(f64::MIN_POSITIVE) + flexibility,
+                factor: 0.5,
+            });
+            // A pad's force has no magnitude before the run: its tip deflection is judged against
+            // its own (unless the modes' terms cancel there and it does not bend the tip).
+            let t = per_mode(&tip, &v);
+            let full: f64 = t.iter().sum();
+            if full.abs() > NEGLIGIBLE_SHARE * t.iter().map(|x| x.abs()).sum::<f64>() {
+                let quantity = format!("tip deflection under a force on {}", pad.name);
+                terms.push(Term { quantity, terms: t, scale: full, factor: 1.0 });
+            }
+        }
+        Ok(TruncationBound { terms })
+    }
+
+    /// The largest expected error of modal(n) and the quantity it is on.
+    pub fn error(&self, n: usize) -> (f64, &str) {
+        self.terms
+            .iter()
+            .map(|t| (t.error(n), t.quantity.as_str()))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .unwrap_or((0.0, "nothing"))
+    }
+
+    /// The fewest modes from `floor` (at most `cap`) whose expected error is within `tolerance`;
+    /// `cap` if none is.
+    pub fn modes_within(&self, floor: usize, cap: usize, tolerance: f64) -> usize {
+        (floor..=cap).find(|&n| self.error(n).0 <= tolerance).unwrap_or(cap)
+    }
+}
+
+/// The scene's loads on an arm its hub holds (an ideal drive or a servo), at the drive's start
+/// and end angles: gravity, and the hub's peak acceleration.
+fn held_at_the_hub(model: &Model, beam: &BeamModel) -> Vec<(String, nalgebra::DVector<f64>)> {
+    let motion = &model.drive.motion;
+    let mut loads = Vec::new();
+    for angle in [motion.start_rad(), motion.end_rad()] {
+        loads.push((format!("gravity at {:.0}°", angle.to_degrees()), gravity_at(model, beam, angle)));
+    }
+    loads.push(("the hub's peak acceleration".into(), motion.peak_accel_rad_s2() * &beam.coupling));
+    loads
+}
+
+/// Gravity's load on the arm at hub angle `angle`, N.
+fn gravity_at(model: &Model, beam: &BeamModel, angle: f64) -> nalgebra::DVector<f64> {
+    let (s, c) = angle.sin_cos();
+    -model.physics.gravity_m_s2 * (s * &beam.axial_mass + c * &beam.transverse_mass)
+}
+
+/// The scene's loads on an arm a cylinder holds, at the drive's start and end angles: gravity
+/// and the hub's acceleration, each with the cylinder's push that carries its moment about the
+/// hub. The cylinder holds the arm at its pin, not at the hub, and pushes mostly along the arm
+/// at the pin's offset: the push bends the arm against the load, the two cancel in part at the
+/// tip, and the truncation's share of what is left is the larger.
+fn held_at_the_pin(
+    model: &Model,
+    beam: &BeamModel,
+    cylinder: &crate::actuator::Cylinder,
+) -> Vec<(String, nalgebra::DVector<f64>)> {
+    let rotation = beam.arm_ride() * rigid_rotation(beam);
+    let [x, y] = cylinder.arm_pin_m;
+    let [u, v, slope] = beam.point_rows(x);
+    let motion = &model.drive.motion;
+    let mut loads = Vec::new();
+    for angle in [motion.start_rad(), motion.end_rad()] {
+        let pin = cylinder.arm_pin_at_m(angle);
+        let (dx, dy) = (pin[0] - cylinder.base_pin_m[0], pin[1] - cylinder.base_pin_m[1]);
+        // The push's direction in the hub frame.
+        let (s, c) = angle.sin_cos();
+        let (along, across) = (c * dx + s * dy, -s * dx + c * dy);
+        let push = along * (&u - y * &slope) + across * &v;
+        let lever = rotation.dot(&push);
+        let deg = angle.to_degrees();
+        let accel = motion.peak_accel_rad_s2() * &beam.coupling;
+        for (name, load) in [
+            (format!("gravity at {deg:.0}°"), gravity_at(model, beam, angle)),
+            (format!("the hub's peak acceleration at {deg:.0}°"), accel),
+        ] {
+            let held = &load - (rotation.dot(&load) / lever) * &push;
+            loads.push((format!("{name} held at the cylinder's pin"), held));
+        }
+    }
+    loads
+}
+
+/// The arm's rigid rotation about the hub over its own DOFs: v = x and a unit slope at every
+/// node (its elements' cubic shapes hold it exactly).
+fn rigid_rotation(beam: &BeamModel) -> nalgebra::DVector<f64> {
+    let mut shape = nalgebra::DVector::zeros(beam.arm_dofs());
+    for (k, x) in beam.nodes_x_m.iter().skip(1).enumerate() {
+        shape[3 * k + 1] = *x;
+        shape[3 * k + 2] = 1.0;
+    }
+    shape
+}
+
+/// The error a held string at `kept` of its bending modes (0: rigid) expects on the arm's
+/// headline quantities: the share of the moving mass in its modes left out, each amplified over
+/// its static ride by r² / (1 − r²), r the arm's first frequency over the mode's (the hands move
+/// at the arm's frequency; the modes left out lie above [`super::STRING_MODE_MARGIN`] times it,
+/// so r ≤ 1/5 and the share each adds is at most 4 %). 0 without a flexible string.
+pub fn string_truncation(beam: &BeamModel, arm_first_hz: f64, kept: usize) -> f64 {
+    let (Some(member), Some(modes)) = (&beam.member, beam.member_modes()) else { return 0.0 };
+    let own = member.own_dofs.clone();
+    let ride = beam.transverse_mass.rows(own.start, own.len());
+    let participation: Vec<f64> = (0..modes.len()).map(|j| modes.shapes.column(j).dot(&ride).powi(2)).collect();
+    // (φⱼᵀ M ι)² is the mass mode j moves with when the hands translate (Σ over every mode: the
+    // string's own DOFs' mass).
+    let amplified: f64 = participation
+        .iter()
+        .zip(modes.frequencies_hz())
+        .skip(kept)
+        .map(|(p, f)| {
+            let r2 = (arm_first_hz / f).powi(2);
+            p * r2 / (1.0 - r2).max(f64::MIN_POSITIVE)
+        })
+        .sum();
+    amplified / beam.total_mass_kg.max(f64::MIN_POSITIVE)
+}
