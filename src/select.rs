@@ -61,6 +61,9 @@ pub struct ExpectedError {
     pub fraction: f64,
     /// Which quantity, and the estimate it comes from.
     pub basis: String,
+    /// The fewest modes the scene's band (and an actuator's coupled frequencies) need, the floor
+    /// the budget adds to; 0 for the string's estimate, which has no floor of its own.
+    pub floor_modes: usize,
 }
 
 impl Model {
@@ -141,7 +144,7 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
     Ok(Choice {
         fidelity: Fidelity::Modal { modes: chosen },
         reason: reasons.join("; "),
-        expected: Some(ExpectedError { fraction, basis }),
+        expected: Some(ExpectedError { fraction, basis, floor_modes: floor }),
     })
 }
 
@@ -235,6 +238,7 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
         basis: "the arm's headline quantities: the string's mass in the modes left out, amplified at the arm's \
                 first frequency (string truncation estimate)"
             .into(),
+        floor_modes: 0,
     });
     if k == 0 {
         return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid"), expected }, None));
