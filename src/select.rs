@@ -1,10 +1,10 @@
 //! The model a scene needs (`model = { kind = "auto" }`, the default) and the seed's motion advice
 //! (§4) for the arm's class. (A shaped drive's modes: [`crate::tuning`].)
 //!
-//! The cheapest fidelity that resolves what the scene excites:
-//! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
-//!   jerk-limited (an S-curve excites nothing the arm can answer);
-//! - otherwise **modal(n)**, n the number of clamped modes below the highest frequency the scene
+//! The cheapest fidelity that resolves what the scene excites within the model's error budget
+//! (`[model] tolerance`):
+//! - never **rigid**: a rigid arm has no tip deflection, a headline quantity;
+//! - **modal(n)** from a floor, the number of clamped modes below the highest frequency the scene
 //!   excites, at least 1:
 //!   - a pad the arm strikes: an impact of duration t_c ≈ π √(m_eff / k) (m_eff the arm's
 //!     first-mode mass at the pad's station) loads modes up to 2.5 / t_c, where the half-sine
@@ -19,9 +19,12 @@
 //!     12-mode model (a cylinder props the arm at its pin; with the flexibility the truncated
 //!     modes leave there added back as a spring in series with the oil column, three modes do
 //!     on the shipped arm, as under a servo: docs/drives.md).
+//!
+//!   then as many more modes as the modal truncation bound ([`TruncationBound`]) needs to come
+//!   within the budget;
 //! - **fe** never by default: it is the reference.
 //!
-//! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
+//! `tests/auto_model.rs` holds the choice within its budget of fe on every shipped scenario.
 
 use nalgebra::Complex;
 use serde::Serialize;

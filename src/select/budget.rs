@@ -2,20 +2,22 @@
 //! own bound (the mode-acceleration argument of Craig and Kurdila, *Fundamentals of Structural
 //! Dynamics*, 2nd ed., §14.5).
 //!
-//! Every mode kept by the band rule lies below nothing the scene excites above it, so the modes
-//! left out answer the scene's loads quasi-statically: what modal(n) misses of a response is the
+//! The band rule keeps every mode the scene excites, so the modes left out answer the scene's
+//! loads quasi-statically: what modal(n) misses of a response is the
 //! truncated modes' share of its static value. For a load pattern b and an output row r over
 //! the FE DOFs, the static response is r K⁻¹ b = Σᵢ (r φᵢ)(φᵢᵀ b) / ωᵢ² over every clamped mode
 //! (mass-normalised, a complete basis of the arm's DOFs), and modal(n) keeps the first n terms.
-//! The loads are those the scene has: gravity on the arm's mass, the hub's angular acceleration
-//! (the inertia S θ̈ of the rigid rotation), a force at each pad's station and at a cylinder's
-//! pin. The outputs: the tip's deflection (its relative truncation under each load), and each
-//! pad's force, whose error follows from the point flexibility f the truncation leaves out at the
+//! The loads are those the scene has, at their magnitudes: gravity at the drive's start and end
+//! angles, the hub's peak acceleration (the inertia S θ̈ of the rigid rotation), under a cylinder
+//! each with the push at the pin that carries its moment, and a force at each pad's station. The
+//! outputs: the tip's deflection under each load (against the largest the scene's loads give),
+//! and each pad's force, whose error follows from the point flexibility f the truncation leaves out at the
 //! pad: an impact's peak force goes as the square root of the contact's stiffness
 //! 1 / (1/k + f), so it is off by about ½ Δf / (1/k + f).
 //!
-//! The sums reuse the modes the run solves anyway: a few dot products per mode, nothing
-//! factorised (docs/fidelity.md measures it against a run).
+//! The sums reuse the modes the run solves anyway: a few dot products per mode, and one Cholesky
+//! factor of the modes' stiffness per load at its hub rate (`SpinningStatics`;
+//! docs/fidelity.md measures it against a run).
 
 use crate::actuator::Actuator;
 use crate::beam::{BeamError, BeamModel, ModalBasis};
