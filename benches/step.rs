@@ -153,7 +153,7 @@ fn string_run(c: &mut Criterion) {
     let out = std::env::temp_dir().join(format!("pipearm-bench-string-{}", std::process::id()));
     let mut group = c.benchmark_group("string_run");
     group.sample_size(40);
-    for (label, string) in [("auto", ModelSpec::Auto), ("rigid", ModelSpec::Rigid)] {
+    for (label, string) in [("auto", ModelSpec::default()), ("rigid", ModelSpec::Rigid)] {
         let load = || {
             let mut spec = Scenario::load(&path).unwrap().spec;
             if let PayloadSpec::String { model, .. } = &mut spec.payload {

@@ -21,6 +21,9 @@ use crate::drive::MotionProfile;
 use crate::integrate::IntegratorKind;
 use crate::robot::{PipeString, Robot};
 
+/// `auto`'s default error budget (`[model] tolerance`): 1 % on the headline quantities.
+pub const DEFAULT_MODEL_TOLERANCE: f64 = 0.01;
+
 /// A scene ready to simulate: the machine (robot, payload, drive), the dampeners it strikes, and
 /// how to simulate it.
 #[derive(Debug, Clone)]
@@ -41,6 +44,8 @@ pub struct Model {
     pub contact: ContactOptions,
     /// The arm's fidelity; `None`: the cheapest the scene needs ([`crate::select`]).
     pub fidelity: Option<Fidelity>,
+    /// `auto`'s error budget on the scene's headline quantities, relative (`[model] tolerance`).
+    pub tolerance: f64,
     /// Physical options of the scene.
     pub physics: PhysicsOptions,
     /// Time integrator of the arm.

@@ -172,6 +172,9 @@ pub struct RunSummary {
     pub model: String,
     /// Why that fidelity.
     pub model_reason: String,
+    /// The error `auto` expects of it on the headline quantities (absent when set by hand).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_expected_error: Option<crate::select::ExpectedError>,
     /// Integrator.
     pub integrator: String,
     /// Contact method.
@@ -330,7 +333,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         }
     };
     let choice = match options.fidelity {
-        Some(fidelity) => crate::select::Choice { fidelity, reason: "set on the command line".into() },
+        Some(fidelity) => crate::select::Choice::set(fidelity, "set on the command line"),
         None => crate::select::fidelity_for(model, &beam, &modes)?,
     };
     let fidelity = choice.fidelity;
@@ -396,7 +399,7 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     let sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
-    summary.model_reason = choice.reason;
+    (summary.model_reason, summary.model_expected_error) = (choice.reason, choice.expected);
     summary.sign_off = sign_off;
     if let Some(choice) = string_choice {
         if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
@@ -644,6 +647,7 @@ fn summarize(
         payload_kg,
         model: fidelity.to_string(),
         model_reason: String::new(),
+        model_expected_error: None,
         integrator: model.integrator.to_string(),
         contact_method: model.contact.method.name().into(),
         contact_detection: (model.contact.method == crate::model::ContactMethod::Compliant)

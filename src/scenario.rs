@@ -158,12 +158,15 @@ impl ArmOverrides {
 }
 
 /// The model a scenario asks for (of the arm in `[model]`, of a string in `payload.model`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum ModelSpec {
-    /// The cheapest fidelity the scene needs.
-    #[default]
-    Auto,
+    /// The cheapest fidelity the scene needs, within `tolerance` (relative; the arm's only,
+    /// default [`crate::model::DEFAULT_MODEL_TOLERANCE`]).
+    Auto {
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        tolerance: Option<f64>,
+    },
     /// Rigid arm.
     Rigid,
     /// The first `modes` clamped modes.
@@ -172,16 +175,22 @@ pub enum ModelSpec {
     Fe,
 }
 
+impl Default for ModelSpec {
+    fn default() -> Self {
+        ModelSpec::Auto { tolerance: None }
+    }
+}
+
 impl ModelSpec {
-    /// Whether it leaves the choice to `auto`.
+    /// Whether it leaves the choice to `auto` with the default budget.
     pub fn is_auto(&self) -> bool {
-        *self == ModelSpec::Auto
+        *self == ModelSpec::default()
     }
 
     /// The fidelity it sets (`None` for `auto`).
     pub fn fidelity(self) -> Option<Fidelity> {
         match self {
-            ModelSpec::Auto => None,
+            ModelSpec::Auto { .. } => None,
             ModelSpec::Rigid => Some(Fidelity::Rigid),
             ModelSpec::Modal { modes } => Some(Fidelity::Modal { modes }),
             ModelSpec::Fe => Some(Fidelity::Fe),
@@ -341,6 +350,7 @@ impl Scenario {
             structures,
             contact: spec.contact,
             fidelity: spec.model.fidelity(),
+            tolerance: check.tolerance(&spec.model, "model")?,
             physics: spec.physics,
             integrator: spec.integrator,
             time: spec.time,
@@ -528,7 +538,10 @@ impl Check<'_> {
                     pipe,
                     clamp: *clamp,
                     friction: FrictionClamp { friction_coefficient: *friction_coefficient, squeeze_n: *squeeze_n },
-                    model: model.fidelity(),
+                    model: {
+                        self.tolerance(model, "payload.model")?;
+                        model.fidelity()
+                    },
                     damping_ratio,
                 })
             }

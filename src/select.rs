@@ -1,10 +1,10 @@
 //! The model a scene needs (`model = { kind = "auto" }`, the default) and the seed's motion advice
 //! (§4) for the arm's class. (A shaped drive's modes: [`crate::tuning`].)
 //!
-//! The cheapest fidelity that resolves what the scene excites:
-//! - **rigid** when the arm is in the seed's rigid class, no pad touches it, and the drive is
-//!   jerk-limited (an S-curve excites nothing the arm can answer);
-//! - otherwise **modal(n)**, n the number of clamped modes below the highest frequency the scene
+//! The cheapest fidelity that resolves what the scene excites within the model's error budget
+//! (`[model] tolerance`):
+//! - never **rigid**: a rigid arm has no tip deflection, a headline quantity;
+//! - **modal(n)** from a floor, the number of clamped modes below the highest frequency the scene
 //!   excites, at least 1:
 //!   - a pad the arm strikes: an impact of duration t_c ≈ π √(m_eff / k) (m_eff the arm's
 //!     first-mode mass at the pad's station) loads modes up to 2.5 / t_c, where the half-sine
@@ -19,9 +19,12 @@
 //!     12-mode model (a cylinder props the arm at its pin; with the flexibility the truncated
 //!     modes leave there added back as a spring in series with the oil column, three modes do
 //!     on the shipped arm, as under a servo: docs/drives.md).
+//!
+//!   then as many more modes as the modal truncation bound ([`TruncationBound`]) needs to come
+//!   within the budget;
 //! - **fe** never by default: it is the reference.
 //!
-//! `tests/auto_model.rs` proves the choice on every shipped scenario against fe.
+//! `tests/auto_model.rs` holds the choice within its budget of fe on every shipped scenario.
 
 use nalgebra::Complex;
 use serde::Serialize;
@@ -32,6 +35,9 @@ use crate::beam::{BeamError, BeamModel, ModalBasis};
 use crate::drive::MotionLaw;
 use crate::model::{Dampener, Model};
 
+mod budget;
+pub use budget::TruncationBound;
+
 /// The fidelity chosen and why.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Choice {
@@ -39,6 +45,28 @@ pub struct Choice {
     pub fidelity: Fidelity,
     /// Why, in a sentence.
     pub reason: String,
+    /// The error `auto` expects of it on the scene's headline quantities (`None` for a fidelity
+    /// set by hand).
+    pub expected: Option<ExpectedError>,
+}
+
+impl Choice {
+    /// A fidelity set by hand (`why`: where), with no estimate.
+    pub fn set(fidelity: Fidelity, why: &str) -> Self {
+        Choice { fidelity, reason: why.into(), expected: None }
+    }
+}
+
+/// The error a choice expects, relative, and on what it is based.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExpectedError {
+    /// The largest expected relative error of a headline quantity (0.01 = 1 %).
+    pub fraction: f64,
+    /// Which quantity, and the estimate it comes from.
+    pub basis: String,
+    /// The fewest modes the scene's band (and an actuator's coupled frequencies) need, the floor
+    /// the budget adds to; 0 for the string's estimate, which has no floor of its own.
+    pub floor_modes: usize,
 }
 
 impl Model {
@@ -62,7 +90,7 @@ impl Model {
 /// The fidelity to run a model at: its own, or the one `auto` chooses, with the reason.
 pub fn fidelity(model: &Model) -> Result<Choice, BeamError> {
     match model.fidelity {
-        Some(fidelity) => Ok(Choice { fidelity, reason: "set in the scenario".into() }),
+        Some(fidelity) => Ok(Choice::set(fidelity, "set in the scenario")),
         None => {
             let beam = BeamModel::new(model.beam_spec()?)?;
             let modes = beam.modes()?;
@@ -75,17 +103,19 @@ pub fn fidelity(model: &Model) -> Result<Choice, BeamError> {
 /// once for the choice and the arm).
 pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
     match model.fidelity {
-        Some(fidelity) => Ok(Choice { fidelity, reason: "set in the scenario".into() }),
+        Some(fidelity) => Ok(Choice::set(fidelity, "set in the scenario")),
         None => choose(model, beam, modes),
     }
 }
 
-/// Picks the cheapest fidelity the model needs, given its beam and clamped modes.
+/// Picks the cheapest fidelity the model needs, given its beam and clamped modes: the modes the
+/// scene's band (and an actuator's coupled frequencies) need as a floor, then as many more as
+/// the modal truncation's bound ([`TruncationBound`]) needs to be within the model's tolerance.
+/// Never rigid: a rigid arm has no tip deflection, a headline quantity.
 pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
     let g = model.physics.gravity_m_s2;
     let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
     let Band { band_hz, modes: mut n, mut reasons } = excited_band(model, beam, modes)?;
-    let jerk_limited = matches!(model.drive.motion.name(), "s-curve" | "hold");
     if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz).filter(|_| band_hz > 0.0) {
         let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
         reasons.push(format!(
@@ -96,16 +126,29 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         ));
         n = k;
     }
-    let fidelity = if n == 0 && class == StiffnessClass::Rigid && model.dampeners.is_empty() && jerk_limited {
-        reasons.push("the arm is in the seed's rigid class".into());
-        Fidelity::Rigid
+    if n == 0 {
+        reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
+    }
+    let floor = n.max(1);
+    let bound = TruncationBound::new(model, beam, modes)?;
+    let chosen = bound.modes_within(floor, modes.len(), model.tolerance);
+    let (fraction, quantity) = bound.error(chosen);
+    let budget = format!("{:.2} %", 100.0 * model.tolerance);
+    reasons.push(if chosen == floor {
+        format!("at that floor the truncation bound is {:.2} % ({quantity}), within {budget}", 100.0 * fraction)
     } else {
-        if n == 0 {
-            reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
-        }
-        Fidelity::Modal { modes: n.max(1) }
-    };
-    Ok(Choice { fidelity, reason: reasons.join("; ") })
+        format!(
+            "{chosen} mode(s) bring the truncation bound from {:.2} % to {:.2} % ({quantity}), within {budget}",
+            100.0 * bound.error(floor).0,
+            100.0 * fraction
+        )
+    });
+    let basis = format!("{quantity}: the modes left out, answering quasi-statically (modal truncation bound)");
+    Ok(Choice {
+        fidelity: Fidelity::Modal { modes: chosen },
+        reason: reasons.join("; "),
+        expected: Some(ExpectedError { fraction, basis, floor_modes: floor }),
+    })
 }
 
 /// What a scene excites: the highest frequency (Hz), the clamped modes below it, and why.
@@ -176,7 +219,7 @@ pub type BuiltBeam = (BeamModel, ModalBasis);
 /// [`string_fidelity`], with the beam (and the arm's modes) `auto` built to choose, ready for a
 /// run where it chose a flexible string (`None` where it did not build one or chose rigid).
 pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBeam>), BeamError> {
-    let choice = |fidelity, reason: &str| Ok((Choice { fidelity, reason: reason.into() }, None));
+    let choice = |fidelity, reason: &str| Ok((Choice::set(fidelity, reason), None));
     let Some(held) = model.payload.string() else { return choice(Fidelity::Rigid, "no string") };
     if let Some(fidelity) = held.model {
         return choice(fidelity, "set in the scenario");
@@ -193,14 +236,21 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
         "held in its hands the string's first mode is {first:.1} Hz against the arm's {arm_first_hz:.1} Hz and \
          the scene's band {band_hz:.0} Hz"
     );
+    let expected = Some(ExpectedError {
+        fraction: budget::string_truncation(&beam, arm_first_hz, k),
+        basis: "the arm's headline quantities: the string's mass in the modes left out, amplified at the arm's \
+                first frequency (string truncation estimate)"
+            .into(),
+        floor_modes: 0,
+    });
     if k == 0 {
-        return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid") }, None));
+        return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid"), expected }, None));
     }
     // The beam built for the choice is the run's, keeping k of the string's modes.
     beam.keep_member_modes(Some(k));
     let fidelity = Fidelity::Modal { modes: k };
     let reason = format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz");
-    Ok((Choice { fidelity, reason }, Some((beam, arm_modes))))
+    Ok((Choice { fidelity, reason, expected }, Some((beam, arm_modes))))
 }
 
 /// Clamped modes of the model against which an actuated arm's coupled frequencies are judged.

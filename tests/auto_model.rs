@@ -1,5 +1,6 @@
-//! `model = "auto"`: on every shipped scenario the chosen fidelity is within 2 % of fe on peak
-//! contact force and peak tip deflection, and no cheaper fidelity is.
+//! `model = "auto"`: on every shipped scenario and on hub-driven scenes without contact the
+//! chosen fidelity is within its budget (`[model] tolerance`, 1 %) of fe on peak contact force
+//! and peak tip deflection, and the next cheaper one is not (or the choice is at its floor).
 
 mod common;
 
@@ -24,65 +25,183 @@ fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
     rel(peak_force(a), peak_force(reference)).max(rel(a.max_tip_deflection_m, reference.max_tip_deflection_m))
 }
 
+/// Runs `s` at `auto`'s choice, at fe and at the next cheaper model; checks the choice is within
+/// the scene's budget of fe and the cheaper one is not (or the choice is at its floor). Returns
+/// the expected error and the measured ones (chosen, cheaper).
+fn check_budget(name: &str, s: &pipearm::model::Model, slack_on_cheaper: Option<f64>) -> (f64, f64, Option<f64>) {
+    let started = std::time::Instant::now();
+    let choice = pipearm::select::fidelity(s).unwrap();
+    let chose_s = started.elapsed().as_secs_f64();
+    let chosen = choice.fidelity;
+    let expected = choice.expected.clone().expect("auto states its expected error");
+    let (fe, _) = run(s, Some(Fidelity::Fe)).unwrap();
+    let (auto, _) = run(s, Some(chosen)).unwrap();
+    let tol = s.tolerance;
+    let Fidelity::Modal { modes } = chosen else { panic!("{name}: auto picks modal(n), not {chosen}") };
+    println!(
+        "{name}: auto = {chosen} (floor {}), expected {:.3} % ({}), {:.3} % from fe; choosing took {:.1} ms, the run {:.1} ms",
+        expected.floor_modes,
+        100.0 * expected.fraction,
+        expected.basis,
+        100.0 * off(&auto, &fe),
+        1e3 * chose_s,
+        1e3 * auto.wall_time_s
+    );
+    common::validated_row(
+        &common::MODEL_CHOICE,
+        &format!(
+            "{name}: the arm at `auto`'s {chosen}, peak contact force and peak tip deflection (expected {})",
+            common::relative(expected.fraction)
+        ),
+        "the fe arm, same scene",
+        &format!("{} N, {} m", common::sig(peak_force(&auto), 5), common::sig(auto.max_tip_deflection_m, 4)),
+        &common::relative(off(&auto, &fe)),
+        &format!("≤ {} (`[model] tolerance`)", common::relative(tol)),
+    );
+    assert!(off(&auto, &fe) <= tol, "{name}: {chosen} is {} from fe, beyond {tol}", off(&auto, &fe));
+    let cheaper = if modes > 1 { Fidelity::Modal { modes: modes - 1 } } else { Fidelity::Rigid };
+    let cheaper_off = match run(s, Some(cheaper)) {
+        Ok((summary, _)) => Some(off(&summary, &fe)),
+        // A cheaper model whose run diverges (the friction clamp on one mode) is not within it.
+        Err(SceneError::Diverged { .. }) => None,
+        Err(e) => panic!("{name}: {cheaper}: {e}"),
+    };
+    let at_floor = modes == expected.floor_modes.max(1);
+    let beam = pipearm::beam::BeamModel::new(s.beam_spec().unwrap()).unwrap();
+    let bound = pipearm::select::TruncationBound::new(s, &beam, &beam.modes().unwrap()).unwrap();
+    let cheaper_expected = bound.error(modes - 1).0;
+    let shown = format!(
+        "{} (expected {})",
+        cheaper_off.map_or("diverges".to_string(), common::relative),
+        common::relative(cheaper_expected)
+    );
+    println!("  {cheaper}: {shown} from fe{}", if at_floor { " (auto is at its floor)" } else { "" });
+    let tolerance = match (at_floor, slack_on_cheaper) {
+        (true, _) => "— (the floor: the modes the scene's band needs)".to_string(),
+        (false, Some(slack)) => format!("> {} off", common::relative(slack * tol)),
+        (false, None) => "— (recorded: the bound is conservative here)".to_string(),
+    };
+    common::validated(
+        &common::MODEL_CHOICE,
+        &format!(
+            "{name}: the next cheaper arm than `auto`'s {chosen}{}",
+            if at_floor { " (auto at the band's floor)" } else { "" }
+        ),
+        "the fe arm, same scene",
+        &shown,
+        &tolerance,
+    );
+    if let (false, Some(slack)) = (at_floor, slack_on_cheaper) {
+        assert!(
+            cheaper_off.is_none_or(|o| o > slack * tol),
+            "{name}: the cheaper {cheaper} is {cheaper_off:?} from fe, within {slack} × {tol}"
+        );
+    }
+    (expected.fraction, off(&auto, &fe), cheaper_off)
+}
+
+/// The models are compared under one unconditionally stable integrator: the FE arm's highest
+/// mode is far beyond an explicit method's limit at the scene's step.
+fn implicit(mut s: pipearm::model::Model) -> pipearm::model::Model {
+    if s.integrator.stability_limit_omega_dt().is_some() {
+        s.integrator = pipearm::integrate::IntegratorKind::default();
+    }
+    s
+}
+
 #[test]
-fn auto_is_within_two_percent_of_fe_and_nothing_cheaper_within_one() {
+fn auto_is_within_its_budget_of_fe_on_every_shipped_scene_and_nothing_cheaper_is() {
     for path in shipped() {
-        let mut s = Scenario::load(&path).unwrap().model;
-        // The models are compared under one unconditionally stable integrator: the FE arm's
-        // highest mode is far beyond an explicit method's limit at the scene's step (the default
-        // scene's RK4 is chosen for its three modes).
-        if s.integrator.stability_limit_omega_dt().is_some() {
-            s.integrator = pipearm::integrate::IntegratorKind::default();
-        }
-        let chosen = pipearm::select::fidelity(&s).unwrap().fidelity;
+        let s = implicit(Scenario::load(&path).unwrap().model);
+        let name = s.name.clone();
+        // The bound is conservative on the cylinder's arm (hydraulic_fast: 0.48 % expected,
+        // 0.17 % measured): the next cheaper model is not within half the budget. On a spinning
+        // hub (the spin-up's 6 rad/s against lifts' 0.3) it is more so (below): recorded.
+        let spinning = s.drive.motion.peak_rate_rad_s() > 1.0;
+        check_budget(&name, &s, (!spinning).then_some(0.5));
+    }
+}
+
+/// A scene built in the test from a shipped one: `edit` applied to its text, written beside the
+/// files it names (the robot, a drive table).
+fn built(from: &str, name: &str, edit: impl Fn(String) -> String, files: &[(&str, String)]) -> pipearm::model::Model {
+    let dir = std::env::temp_dir().join(format!("pipearm-auto-model-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(root.join("scenarios").join(from)).unwrap();
+    let text = edit(text.replace("../robots/", &format!("{}/robots/", root.display())));
+    for (file, content) in files {
+        std::fs::write(dir.join(file), content).unwrap();
+    }
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    implicit(Scenario::load(&path).unwrap().model)
+}
+
+/// The Kane–Ryan–Banerjee spin-up to 6 rad/s in `spin_s` (the arm's first frequency is 3.8 rad/s),
+/// as a table every 10 ms.
+fn spin_up_table(spin_s: f64) -> String {
+    let mut rows = vec!["t[s],angle[deg]".to_string()];
+    let (w, tau) = (6.0, std::f64::consts::TAU);
+    for i in 0..=(spin_s / 0.01).round() as usize {
+        let t = i as f64 * 0.01;
+        let angle = w / spin_s * (t * t / 2.0 + (spin_s / tau).powi(2) * ((tau * t / spin_s).cos() - 1.0));
+        rows.push(format!("{t},{}", angle.to_degrees()));
+    }
+    rows.join("\n") + "\n"
+}
+
+/// Hub-driven scenes without contact: fast table-driven spin-ups and a fast S-curve lowering,
+/// judged on the peak tip deflection.
+fn scenes_without_contact() -> Vec<(String, pipearm::model::Model)> {
+    let mut scenes = Vec::new();
+    for spin_s in [1.0, 3.0] {
+        let name = format!("spin-up to 6 rad/s in {spin_s} s");
+        let s = built(
+            "spin_up.toml",
+            &format!("spin{spin_s}"),
+            |t| t.replace("file = \"spin_up.csv\"", "file = \"fast.csv\"").replace("settle_s = 15.0", "settle_s = 5.0"),
+            &[("fast.csv", spin_up_table(spin_s))],
+        );
+        scenes.push((name, s));
+    }
+    let mut lowering = built("lowering.toml", "lowering", |t| t.replace("duration_s = 15.0", "duration_s = 8.0"), &[]);
+    lowering.dampeners.clear();
+    scenes.push(("S-curve lowering 90° → 0° in 8 s (16 °/s, the joint's limit 17), no pad".to_string(), lowering));
+    scenes
+}
+
+#[test]
+fn auto_is_within_its_budget_on_hub_driven_scenes_without_contact() {
+    for (name, s) in scenes_without_contact() {
+        // The bound is conservative on a spinning hub (it judges the hub's peak acceleration at
+        // the peak rate, which a spin-up does not reach together): there the next cheaper
+        // model's error is recorded beside its estimate, not asserted.
+        let spinning = s.drive.motion.peak_rate_rad_s() > 1.0;
+        check_budget(&name, &s, (!spinning).then_some(0.5));
+    }
+}
+
+#[test]
+fn a_tighter_budget_keeps_at_least_as_many_modes_and_holds() {
+    for (name, mut s) in scenes_without_contact() {
+        let loose = pipearm::select::fidelity(&s).unwrap().fidelity;
+        s.tolerance = 0.002;
+        let tight = pipearm::select::fidelity(&s).unwrap().fidelity;
+        let modes = |f: Fidelity| if let Fidelity::Modal { modes } = f { modes } else { 0 };
+        assert!(modes(tight) >= modes(loose), "{name}: {tight} at 0.2 % against {loose} at 1 %");
         let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
-        let (auto, _) = run(&s, Some(chosen)).unwrap();
-        let name = &s.name;
-        println!("{name}: auto = {chosen}, {:.3} % from fe", 100.0 * off(&auto, &fe));
+        let (chosen, _) = run(&s, Some(tight)).unwrap();
+        println!("{name}: at 0.2 % auto = {tight} (at 1 %: {loose}), {:.3} % from fe", 100.0 * off(&chosen, &fe));
         common::validated_row(
             &common::MODEL_CHOICE,
-            &format!("{name}: the arm at `auto`'s {chosen}, peak contact force and peak tip deflection"),
+            &format!("{name}: `auto` at `tolerance = 0.002` ({tight}; at 1 %: {loose}), peak tip deflection"),
             "the fe arm, same scene",
-            &format!("{} N, {} m", common::sig(peak_force(&auto), 5), common::sig(auto.max_tip_deflection_m, 4)),
-            &common::relative(off(&auto, &fe)),
-            "≤ 2 %",
+            &format!("{} m", common::sig(chosen.max_tip_deflection_m, 4)),
+            &common::relative(off(&chosen, &fe)),
+            "≤ 0.2 %",
         );
-        assert!(off(&auto, &fe) <= 0.02, "{name}: {chosen} is {} from fe", off(&auto, &fe));
-        let cheaper: Vec<Fidelity> = match chosen {
-            Fidelity::Rigid => vec![],
-            Fidelity::Modal { modes } => {
-                std::iter::once(Fidelity::Rigid).chain((1..modes).map(|m| Fidelity::Modal { modes: m })).collect()
-            }
-            Fidelity::Fe => panic!("auto never picks fe"),
-        };
-        let mut cheaper_off = Vec::new();
-        for fidelity in cheaper {
-            // A cheaper model whose run diverges (the friction clamp on one mode) is not within
-            // 2 % either.
-            match run(&s, Some(fidelity)) {
-                Ok((summary, _)) => {
-                    println!("  {fidelity}: {:.3} % from fe", 100.0 * off(&summary, &fe));
-                    cheaper_off.push(format!("{fidelity} {}", common::relative(off(&summary, &fe))));
-                    // auto reads the modes a scene needs off its band, a sufficient rule: a cheaper
-                    // model may come within 2 % (the lab's one mode: 1.6 %), not within 1 %.
-                    assert!(off(&summary, &fe) > 0.01, "{name}: the cheaper {fidelity} is within 1 %");
-                }
-                Err(SceneError::Diverged { t_s, what, .. }) => {
-                    println!("  {fidelity}: diverged at {t_s} s: {what}");
-                    cheaper_off.push(format!("{fidelity} diverges"));
-                }
-                Err(e) => panic!("{name}: {fidelity}: {e}"),
-            }
-        }
-        if !cheaper_off.is_empty() {
-            common::validated(
-                &common::MODEL_CHOICE,
-                &format!("{name}: each cheaper arm than `auto`'s {chosen}, peak contact force and peak tip deflection"),
-                "the fe arm, same scene: `auto` picks nothing cheaper than needed",
-                &cheaper_off.join(", "),
-                "each > 1 % off",
-            );
-        }
+        assert!(off(&chosen, &fe) <= 0.002, "{name}: {tight} is {} from fe", off(&chosen, &fe));
     }
 }
 
@@ -152,10 +271,12 @@ fn the_strings_auto_is_rigid_exactly_where_a_rigid_string_is_within_one_percent(
             if peak_force(r) > 0.0 { off(a, r) } else { off(a, r).max(residual) }
         };
         let rigid_off = off(&rigid, &fe);
+        let expected = auto.expected.as_ref().map_or(f64::NAN, |e| e.fraction);
         println!(
-            "{name}: string auto = {} ({}); rigid {:.3} % from fe, auto {:.3} %",
+            "{name}: string auto = {} ({}; expected {:.3} %); rigid {:.3} % from fe, auto {:.3} %",
             auto.fidelity,
             auto.reason,
+            100.0 * expected,
             100.0 * rigid_off,
             100.0 * off(&chosen, &fe)
         );

@@ -113,6 +113,12 @@ fn scenario_errors_name_file_key_and_range() {
             .replace("step_s = 0.003", "step_s = 0.003\nfree_step_s = 0.01\ntolerance_m = -1.0")
     });
     assert!(m.contains("time.tolerance_m") && m.contains("0 < tolerance_m"), "{m}");
+    for bad in ["0.0", "-0.01", "1.0"] {
+        let m = load_error("model-tolerance", |t| {
+            t.replace("kind = \"auto\"", &format!("kind = \"auto\"\ntolerance = {bad}"))
+        });
+        assert!(m.contains("model.tolerance") && m.contains("0 < tolerance < 1") && m.contains(".toml"), "{m}");
+    }
     let m = load_error("modes", |t| t.replace("kind = \"auto\"", "kind = \"modal\"\nmodes = 500"));
     assert!(m.contains("model.modes") && m.contains("1 ..= 72"), "{m}");
     let m = load_error("beyond-limit", |t| t.replace("end_deg = 90.0", "end_deg = 120.0"));

@@ -16,6 +16,22 @@ pub struct ChecksSpec {
 }
 
 impl Check<'_> {
+    /// `[model] tolerance`: `auto`'s error budget, 0 < tolerance < 1 (the string's `auto` works
+    /// to the arm's, so `payload.model` takes none).
+    pub(super) fn tolerance(&self, spec: &super::ModelSpec, key: &str) -> Result<f64, ScenarioError> {
+        let super::ModelSpec::Auto { tolerance: Some(tolerance) } = *spec else {
+            return Ok(crate::model::DEFAULT_MODEL_TOLERANCE);
+        };
+        let key = format!("{key}.tolerance");
+        if key != "model.tolerance" {
+            return Err(self.invalid(&key, "the string's auto works to the arm's budget: set [model] tolerance"));
+        }
+        if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < 1.0) {
+            return Err(self.invalid(&key, format!("{tolerance} is outside 0 < tolerance < 1 (relative; 0.01 = 1 %)")));
+        }
+        Ok(tolerance)
+    }
+
     /// `[checks]`: a design factor > 0; utilisation, which the table asks for, needs a yield
     /// strength on at least one of the robot's segments.
     pub(super) fn checks(&self, spec: Option<&ChecksSpec>, robot: &Robot) -> Result<SignOffChecks, ScenarioError> {

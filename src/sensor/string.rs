@@ -361,6 +361,9 @@ pub struct StringSummary {
     pub model: String,
     /// Why that fidelity.
     pub model_reason: String,
+    /// The error `auto` expects of it on the arm's headline quantities (absent when set by hand).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model_expected_error: Option<crate::select::ExpectedError>,
     /// Its first three bending frequencies held in its hands (the hands fixed), Hz, whatever
     /// fidelity ran.
     pub frequencies_hz: Vec<f64>,
@@ -437,6 +440,7 @@ impl StringSummary {
             joint_mass_kg: joints.map(|j| held.pipe.mass_kg() / j.count as f64),
             model: choice.fidelity.to_string(),
             model_reason: choice.reason,
+            model_expected_error: choice.expected,
             frequencies_hz: frequencies_hz.into_iter().take(3).collect(),
             max_bending_stress_pa: stress,
             max_bending_stress_time_s: t_s.get(i).copied().unwrap_or(0.0),
