@@ -138,13 +138,27 @@ pub(crate) type ForceChart<'a> = ChartContext<
 
 /// Writes each point's string (`9-5/8@47.00`) just above it, turned up so that the labels of
 /// neighbouring points do not run into each other; `force_hi_n` is the top of the force axis.
+/// Where points crowd, a label is left out unless it clears the last one written by a line's
+/// height (left to right): an unreadable pile of labels names nothing.
 pub(crate) fn label_points(
     chart: &mut ForceChart<'_>,
     points: &[(f64, f64, &str)],
     force_hi_n: f64,
 ) -> Result<(), String> {
+    const LINE_PX: i32 = 13;
     let style = ("sans-serif", 11).into_font().transform(FontTransform::Rotate270).color(&BLACK);
-    let labelled = points.iter().filter(|p| !p.2.is_empty());
+    let mut sorted: Vec<&(f64, f64, &str)> = points.iter().filter(|p| !p.2.is_empty()).collect();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let mut last_px: Option<i32> = None;
+    let mut labelled = Vec::new();
+    for point in sorted {
+        let px = chart.as_coord_spec().translate(&(point.0, point.1)).0;
+        if last_px.is_none_or(|last| px - last >= LINE_PX) {
+            labelled.push(point);
+            last_px = Some(px);
+        }
+    }
+    let labelled = labelled.into_iter();
     chart
         .draw_series(
             labelled.map(|(x, y, label)| Text::new(label.to_string(), (*x, y + 0.015 * force_hi_n), style.clone())),
