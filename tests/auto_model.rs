@@ -205,6 +205,31 @@ fn a_tighter_budget_keeps_at_least_as_many_modes_and_holds() {
     }
 }
 
+/// An arm held upright (gravity along it, no pad, no motion) is bent by nothing: the bound has
+/// nothing to judge and `auto` stays at its floor, one mode, where fe's tip moves by less than a
+/// hundredth of the arm's own sag laid level.
+#[test]
+fn an_arm_held_upright_stays_at_the_floor() {
+    let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model;
+    s.dampeners.clear();
+    s.drive.motion = pipearm::scenario::DriveSpec::Hold { angle_deg: 90.0 }.motion().unwrap();
+    let s = implicit(s);
+    let chosen = pipearm::select::fidelity(&s).unwrap();
+    assert_eq!(chosen.fidelity, Fidelity::Modal { modes: 1 }, "{}", chosen.reason);
+    let (fe, _) = run(&s, Some(Fidelity::Fe)).unwrap();
+    let (auto, _) = run(&s, Some(chosen.fidelity)).unwrap();
+    let mut level = s.clone();
+    level.drive.motion = pipearm::scenario::DriveSpec::Hold { angle_deg: 0.0 }.motion().unwrap();
+    let (level_fe, _) = run(&level, Some(Fidelity::Fe)).unwrap();
+    let sag = level_fe.max_tip_deflection_m;
+    let apart = (auto.max_tip_deflection_m - fe.max_tip_deflection_m).abs();
+    println!(
+        "upright: modal(1) tip {:.3e} m, fe {:.3e} m; level sag {sag:.3e} m",
+        auto.max_tip_deflection_m, fe.max_tip_deflection_m
+    );
+    assert!(apart <= 0.01 * sag, "upright: modal(1) and fe {apart} m apart against a sag of {sag} m");
+}
+
 #[test]
 fn motion_advice_flags_drives_beyond_the_seed_limits() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml");

@@ -88,9 +88,16 @@ impl TruncationBound {
         // scene's loads give, a stand-in for its peak: a load that hardly bends the tip (gravity
         // along the raised arm) is not judged against its own near-zero deflection.
         let largest = tips.iter().map(|(_, t)| t[0].abs()).fold(0.0, f64::max);
+        // Loads that bend the tip by less than a thousandth of the arm's own sag laid level (an
+        // arm held upright, gravity along it) leave nothing to judge: their shares are round-off,
+        // and judged against each other they would ask for every mode.
+        let sag = per_mode(&tip, &gravity_at(model, beam, 0.0)).iter().sum::<f64>().abs();
         let mut terms = Vec::new();
-        for (name, missing) in tips {
-            terms.push(Term { quantity: format!("tip deflection under {name}"), missing, scale: largest, factor: 1.0 });
+        if largest > 1e-3 * sag && largest > 0.0 {
+            for (name, missing) in tips {
+                let quantity = format!("tip deflection under {name}");
+                terms.push(Term { quantity, missing, scale: largest, factor: 1.0 });
+            }
         }
         for pad in &model.dampeners {
             let [_, v, _] = beam.point_rows(pad.station_m);
