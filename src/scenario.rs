@@ -405,14 +405,30 @@ impl Check<'_> {
 
     /// The ranges serde cannot check, on the resolved model.
     fn model(&self, model: &Model) -> Result<(), ScenarioError> {
+        let arm_m = model.robot.arm.length_m();
+        let centre_on_arm = |held: &HeldString| (0.0..=arm_m).contains(&held.mass_centre_m());
         if let Some(held) = model.payload.string() {
             self.clamp(held, &model.robot)?;
+            if held.model == Some(Fidelity::Rigid) && !centre_on_arm(held) {
+                let message = format!(
+                    "a lumped string is one mass on the arm, and this one's centre of mass lies {:.2} m from the \
+                     pivot, off the arm (0 to {arm_m:.2} m): hold it nearer the pivot (its grips' `at_m`) or leave \
+                     `model` out to hold it flexibly",
+                    held.mass_centre_m()
+                );
+                return Err(self.invalid("payload.model", message));
+            }
         }
-        // The arm with a string lumped (cheap: no eigenproblem); a flexible string's own beam is
-        // checked from its description (what `auto` builds is the run's).
+        // The arm with a string lumped (cheap: no eigenproblem) where the lumped mass lies on the
+        // arm; a flexible string's own beam is checked from its description (what `auto` builds
+        // is the run's), its centre of mass may lie beyond the tip.
         let beam = model
             .beam_spec_with_string(None)
             .and_then(BeamModel::new)
+            .or_else(|e| match model.payload.string() {
+                Some(held) if !centre_on_arm(held) => BeamModel::new(model.robot.beam_spec(&[])?),
+                _ => Err(e),
+            })
             .map_err(|e| self.invalid("payload", e.to_string()))?;
         let member = match model.payload.string().filter(|held| held.model != Some(Fidelity::Rigid)) {
             Some(held) => {
