@@ -113,6 +113,38 @@ fn the_static_arm_held_at_an_angle_balances_as_its_free_body_by_hand() {
         let span = held.grips[1].station_m - held.grips[0].station_m;
         let expected = if string == Some(Fidelity::Rigid) { 0.0 } else { w * overhang * overhang / 2.0 };
         assert!((m_tip - expected).abs() < 1e-6 * moment + w * span * span / 12.0, "{string:?}: {m_tip} vs {expected}");
+        the_hands_hold_the_strings_weight(&model, &series, angle_deg, string == Some(Fidelity::Rigid));
+    }
+}
+
+/// The string's load on its hands at the end of a static hold: together its weight, whatever
+/// its model (hub frame: −m g sin θ along the arm, −m g cos θ across). A rigid string's hands
+/// are pins: the lever rule about its centre of mass across, the axial load as the string's
+/// length lies either side of the hands' midpoint, no moment.
+fn the_hands_hold_the_strings_weight(model: &Model, series: &Series, angle_deg: f64, rigid: bool) {
+    let held = model.payload.string().unwrap();
+    let weight = held.pipe.mass_kg() * model.physics.gravity_m_s2;
+    let (s, c) = angle_deg.to_radians().sin_cos();
+    let last = series.t_s.len() - 1;
+    let value = |at: usize| f64::from(series.stress.values[last * series.stress.width + at]);
+    let loads: Vec<[f64; 3]> =
+        series.stress.hands.iter().map(|(_, at)| [value(*at), value(at + 1), value(at + 2)]).collect();
+    assert_eq!(loads.len(), held.grips.len(), "a load per hand");
+    let total = loads.iter().fold([0.0, 0.0], |t, l| [t[0] + l[0], t[1] + l[1]]);
+    // (The arm's sag tilts the hands by ~1e-3 rad.)
+    assert!((total[0] + weight * s).abs() < 3e-3 * weight, "rigid {rigid}: along {} vs {}", total[0], -weight * s);
+    assert!((total[1] + weight * c).abs() < 3e-3 * weight, "rigid {rigid}: across {} vs {}", total[1], -weight * c);
+    if rigid {
+        let (x1, x2) = (held.grips[0].station_m, held.grips[1].station_m);
+        let outer_across = -weight * c * (held.mass_centre_m() - x1) / (x2 - x1);
+        let end = held.start_m() + held.pipe.length_m;
+        let outer_along = -weight * s * (end - 0.5 * (x1 + x2)) / held.pipe.length_m;
+        let expected = [[-weight * s - outer_along, -weight * c - outer_across, 0.0], [outer_along, outer_across, 0.0]];
+        for (load, expected) in loads.iter().zip(expected) {
+            for (l, e) in load.iter().zip(expected) {
+                assert!((l - e).abs() < 3e-3 * weight, "rigid hands {loads:?} vs {expected:?}");
+            }
+        }
     }
 }
 
@@ -140,6 +172,11 @@ fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
     assert!((cylinder.peak_force_n / rod - 1.0).abs() < 3e-3, "rod {} vs {rod}", cylinder.peak_force_n);
     for (world, u) in cylinder.world_n.iter().zip(unit) {
         assert!((world - rod * u).abs() < 3e-3 * rod, "{:?}", cylinder.world_n);
+    }
+    // The cylinder, a two-force member, pushes its base pin's bracket back along the same line.
+    let base = pins.cylinder_base.as_ref().unwrap();
+    for (world, u) in base.world_n.iter().zip(unit) {
+        assert!((world + rod * u).abs() < 3e-3 * rod, "{:?}", base.world_n);
     }
     // The pivot takes the rest: weight minus the rod's push.
     let pivot = [-rod * unit[0], weight - rod * unit[1]];
@@ -177,13 +214,39 @@ fn the_summation_is_the_strain_gauges_exact_moment_to_second_order() {
     let mut model = load("default.toml");
     let gauge = SensorSpec { name: "g".into(), kind: "strain-gauge".into(), station_m: Some(3.0) };
     model.sensors = vec![gauge.resolve(&model.robot).unwrap()];
-    let (_, series) = run(&model, None).unwrap();
+    // A curve without a cut-off, so that the lift's every cycle counts.
+    let curve = pipearm::fatigue::SnCurve::dnv("dnv-d").unwrap();
+    model.robot.arm.segments.iter_mut().for_each(|s| s.checks.sn_curve = Some(curve));
+    let (summary, series) = run(&model, None).unwrap();
     let i = station(&series, 3.0);
     let readings = &series.sensors[0].values;
     let peak = readings.iter().map(|v| v[0].abs()).fold(0.0, f64::max);
     let worst = (0..series.t_s.len()).map(|k| (forces(&series, i, k)[1] - readings[k][0]).abs()).fold(0.0, f64::max);
     println!("summation against the gauge: worst {worst:.2} N·m, {:.2e} of the peak", worst / peak);
     assert!(worst < 5e-4 * peak, "worst {worst} N·m against a peak of {peak}");
+    the_gauges_fatigue_is_its_own_historys(&summary, &series, i);
+}
+
+/// A strain gauge's fatigue is counted on its own stress channel: its largest rainflow range is
+/// the channel's max − min (the largest cycle a rainflow count closes always spans the history),
+/// and its damage per lift is the section's there (the recovery's bending stress at the upper
+/// fibre, M c / I as the gauge reads it: another sum of the same loads) to within their
+/// difference in stress, three to five times over in damage.
+fn the_gauges_fatigue_is_its_own_historys(summary: &RunSummary, series: &Series, i: usize) {
+    let fatigue = &summary.sign_off.as_ref().unwrap().fatigue;
+    let gauge =
+        fatigue.places.iter().find(|p| p.place == "gauge g").expect("the gauge's place: its segment has a curve");
+    let sigma: Vec<f64> = series.sensors[0].values.iter().map(|v| v[1]).collect();
+    let span = sigma.iter().copied().fold(f64::MIN, f64::max) - sigma.iter().copied().fold(f64::MAX, f64::min);
+    assert!((gauge.damage.max_range_pa - span).abs() <= 1e-9 * span, "{} vs {span}", gauge.damage.max_range_pa);
+    let per_moment = series.stress.stations[i].fibres.per_moment_per_m3;
+    let section: Vec<f64> = (0..series.t_s.len()).map(|k| forces(series, i, k)[1] * per_moment).collect();
+    let curve = pipearm::fatigue::SnCurve::dnv("dnv-d").unwrap();
+    let expected =
+        pipearm::fatigue::LiftDamage::of(&section, &curve, summary.sign_off.as_ref().unwrap().stress.stress_factor);
+    let damage = gauge.damage.damage_per_lift;
+    println!("gauge damage {damage:.4e} per lift, the section's {:.4e}", expected.damage_per_lift);
+    assert!((damage / expected.damage_per_lift - 1.0).abs() < 5e-3, "{damage} vs {}", expected.damage_per_lift);
 }
 
 /// The machine's linear momentum, world frame, from the state: the arm's Gauss points, its

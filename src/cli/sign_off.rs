@@ -35,6 +35,9 @@ pub fn print(s: &RunSummary) {
         if let Some(cylinder) = &pins.cylinder {
             print_pin("cylinder pin", cylinder);
         }
+        if let Some(base) = &pins.cylinder_base {
+            print_pin("cylinder base pin", base);
+        }
         for hand in &pins.hands {
             println!(
                 "grip {:<14} peak {:.2} kN at {:.3} s, {:.2} kN·m at {:.3} s",

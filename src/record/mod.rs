@@ -21,7 +21,7 @@
 //! | `plots/string_slip` | friction clamp slip, m |
 //! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
 //! | `plots/stress/worst_station` | σ at the worst station and fibre, Pa |
-//! | `plots/stress/yield/{tension,compression}` | ± yield / stress_factor there, Pa (where a yield strength is given) |
+//! | `plots/stress/yield/{tension,compression}` | ± yield / stress_factor there, Pa (where a yield strength is given and the peak reaches half of it; else the trace's name gives it) |
 //! | `plots/pins/{pivot,cylinder}`, `plots/pins/hands/<hand>` | pin and grip force magnitudes, N |
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time; a diverged run's guard message last |
 //! | `summary` | the run summary (JSON; not for a diverged run) |
@@ -46,7 +46,7 @@ mod writer;
 
 pub use content::{arrow_scale_n_per_m, magnification};
 pub use stream::Viewer;
-pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, WORST_STATION_ENTITY, YIELD_ENTITY};
+pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY};
 
 use crate::run::{RunSummary, Series};
 

@@ -16,6 +16,9 @@ pub const WORST_STATION_ENTITY: &str = "plots/stress/worst_station";
 /// Entity path of the yield line the worst station's stress is plotted against, Pa.
 pub const YIELD_ENTITY: &str = "plots/stress/yield";
 
+/// The share of the yield line the worst station's peak |σ| reaches before the line is drawn.
+pub const YIELD_DRAWN_FROM: f64 = 0.5;
+
 /// Entity path of the pivot's force on the arm, N (the cylinder's is `plots/pins/cylinder`, a
 /// hand's grip `plots/pins/hands/<hand>`).
 pub const PIVOT_ENTITY: &str = "plots/pins/pivot";
@@ -228,17 +231,23 @@ impl Writer<'_> {
         }
         if let Some(shading) = shading {
             let (i, fibre) = shading.worst;
-            let name = format!("σ at {:.2} m, {} fibre", series.stations[i].station_m, fibre.name());
-            self.log_static(WORST_STATION_ENTITY, &rerun::SeriesLines::new().with_names([name]))?;
             // The kept steps and the peak's, so that the plot reaches the summary's figure.
             let sigma: Vec<f64> = (0..steps).map(|k| series.stress_pa(i, fibre, k)).collect();
             let peak = (0..steps).max_by(|&a, &b| sigma[a].abs().total_cmp(&sigma[b].abs())).unwrap_or(0);
+            // A yield line far above the trace flattens it: drawn from half the yield up, else
+            // named beside the trace.
+            let drawn_yield_pa = shading.worst_yield_pa.filter(|&y| sigma[peak].abs() >= YIELD_DRAWN_FROM * y);
+            let mut name = format!("σ at {:.2} m, {} fibre", series.stations[i].station_m, fibre.name());
+            if let (Some(y), None) = (shading.worst_yield_pa, drawn_yield_pa) {
+                name += &format!(" (yield / stress_factor {:.0} MPa, off the scale)", 1e-6 * y);
+            }
+            self.log_static(WORST_STATION_ENTITY, &rerun::SeriesLines::new().with_names([name]))?;
             let t = &self.run.series.t_s;
             let rows: Vec<usize> = (0..steps).filter(|&k| k == peak || self.keeps(k)).collect();
             let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| t[k]));
             let columns = rerun::Scalars::new(rows.iter().map(|&k| sigma[k])).columns_of_unit_batches()?;
             self.send_columns(WORST_STATION_ENTITY, times, columns)?;
-            if let Some(yield_pa) = shading.worst_yield_pa {
+            if let Some(yield_pa) = drawn_yield_pa {
                 // Two points each: a constant needs no more.
                 let t = &self.run.series.t_s;
                 let ends = [t[0], t[t.len() - 1]];

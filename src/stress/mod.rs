@@ -108,12 +108,9 @@ impl StressSeries {
                 let axial = forces[0] * station.fibres.per_axial_force_per_m2;
                 let bending = forces[1] * station.fibres.per_moment_per_m3;
                 for (e, s) in e.iter_mut().zip([axial + bending, axial - bending]) {
-                    if s > e.max {
-                        e.max = s;
-                    }
-                    if s < e.min {
-                        e.min = s;
-                    }
+                    // Selects, not branches or `f64::max`'s NaN handling: they vectorise.
+                    e.max = if s > e.max { s } else { e.max };
+                    e.min = if s < e.min { s } else { e.min };
                 }
             }
         }
@@ -146,12 +143,17 @@ impl StressProbe {
         let pin_station: Vec<f64> = cylinder.iter().map(|(c, _)| c.arm_pin_m[0]).collect();
         let stations = recovery::stations_of(arm, &segment_ends, &pin_station);
         let fibres = stations.iter().map(|s| Fibres::of(&segments[s.segment].section)).collect();
-        let rigid_centre = match (&arm.beam.member, model.payload.string()) {
-            (None, Some(held)) => Some(held.centre_m()),
+        let rigid_string = match (&arm.beam.member, model.payload.string()) {
+            (None, Some(held)) => Some(recovery::RigidString {
+                centre_m: held.centre_m(),
+                mass: held.lumped_mass(),
+                hands_m: held.grips.iter().map(|g| g.station_m).collect(),
+                ends_m: [held.start_m(), held.start_m() + held.pipe.length_m],
+            }),
             _ => None,
         };
         StressProbe {
-            recovery: SectionRecovery::new(arm, stations, rigid_centre),
+            recovery: SectionRecovery::new(arm, stations, rigid_string.as_ref()),
             fibres,
             cylinder,
             scratch: recovery::Scratch::default(),

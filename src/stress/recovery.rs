@@ -96,20 +96,44 @@ pub struct SectionRecovery {
     layout: Layout,
     /// Sections, hub outwards.
     pub stations: Vec<Station>,
-    /// The string's loads on its hands (x, y, moment per hand) over the entries of z in
-    /// `hand_support`.
+    /// The string's loads on its hands (x, y, moment per hand) over z.
     hand_rows: DMatrix<f64>,
-    hand_support: Vec<usize>,
     /// Per station (N, M), then the pivot's force on the arm (x, y, hub frame), over the entries
-    /// of z and of the hand loads in `support`.
+    /// of z in `z_support`, then the hand loads in `hand_support` (the arm's sections do not see
+    /// a string's own coordinates but through its hands).
     rows: DMatrix<f64>,
-    /// The entries of z followed by the hand loads that `rows` read (the arm's sections do not
-    /// see a string's own coordinates but through its hands).
-    support: Vec<usize>,
+    z_support: Vec<usize>,
+    hand_support: Vec<usize>,
     string: Option<StringRouting>,
     tolerance_m: f64,
-    /// Where a rigid string's contact loads reach the arm: its centre station, m.
-    rigid_string_centre_m: Option<f64>,
+    /// A rigid string's hands, and where its contact loads reach the arm.
+    rigid: Option<RigidGrip>,
+}
+
+/// A rigid string as the recovery needs it: lumped in the arm's masses, so read for its hands'
+/// loads alone.
+#[derive(Debug, Clone)]
+pub struct RigidString {
+    /// Station of its centre, where its contact loads reach the arm, m.
+    pub centre_m: f64,
+    /// Its mass and rotary inertia, lumped at its centre of mass.
+    pub mass: crate::beam::ConcentratedMass,
+    /// Its hands' stations, hub outwards, m.
+    pub hands_m: Vec<f64>,
+    /// Its ends' stations, m.
+    pub ends_m: [f64; 2],
+}
+
+/// A rigid string's hands: pins on the arm (a rigid string between two clamps is statically
+/// indeterminate; pins are the determinate reading). The outer two share the transverse load by
+/// the lever rule and the axial load as the string's length lies either side of their
+/// midpoint; a hand between them, or a single hand's moment, carries what the lever leaves.
+#[derive(Debug, Clone)]
+struct RigidGrip {
+    centre_m: f64,
+    hands: Vec<Point>,
+    /// The outer hand's share of a load along the string.
+    axial_outer_share: f64,
 }
 
 /// Steps read before their linear part is evaluated, as one matrix product.
@@ -119,7 +143,6 @@ const CHUNK_STEPS: usize = 64;
 #[derive(Debug, Clone, Default)]
 pub struct Scratch {
     z: DMatrix<f64>,
-    hand_z: DMatrix<f64>,
     hands: DMatrix<f64>,
     read: DMatrix<f64>,
     pending: usize,
@@ -128,18 +151,23 @@ pub struct Scratch {
 
 impl SectionRecovery {
     /// The recovery on `arm` at the sections `stations` (built by [`stations_of`]).
-    pub fn new(arm: &ArmModel, stations: Vec<Station>, rigid_string_centre_m: Option<f64>) -> Self {
+    pub fn new(arm: &ArmModel, stations: Vec<Station>, rigid_string: Option<&RigidString>) -> Self {
         let hand_count = arm.beam.member.as_ref().map_or(0, |m| m.spec.clamps_m.len());
         let layout = Layout { n: arm.elastic_dofs(), extra: 3 * hand_count };
         let tolerance_m = 1e-9 * arm.length_m();
         let masses = arm_mass_points(arm, &layout);
-        let (hand_actions, string) = match &arm.beam.member {
+        let (mut hand_actions, string) = match &arm.beam.member {
             Some(member) => {
                 let (actions, routing) = string_hand_loads(arm, &layout, member);
                 (actions, Some(routing))
             }
             None => (Vec::new(), None),
         };
+        let rigid = rigid_string.filter(|_| string.is_none()).map(|r| {
+            let (actions, grip) = rigid_hand_loads(arm, &layout, r);
+            hand_actions = actions;
+            grip
+        });
         let hands: Vec<&Hand> = string.iter().flat_map(|s| &s.hands).collect();
         let readings: Vec<Action> = (0..hand_count).map(|h| Action::reading(&layout, 3 * h)).collect();
         // The loads outboard of each station, summed once from the tip inward about the pivot's
@@ -180,26 +208,21 @@ impl SectionRecovery {
         forms.push(-whole.fy);
         let support: Vec<usize> = (0..layout.form_len()).filter(|&c| forms.iter().any(|f| f[c] != 0.0)).collect();
         let rows = DMatrix::from_fn(forms.len(), support.len(), |r, c| forms[r][support[c]]);
+        let (z_support, hand_support): (Vec<usize>, Vec<usize>) =
+            support.into_iter().partition(|&c| c < layout.z_len());
+        let hand_support = hand_support.into_iter().map(|c| c - layout.z_len()).collect();
         let hand_forms: Vec<&Form> = hand_actions.iter().flat_map(|a| [&a.fx, &a.fy, &a.m]).collect();
-        let hand_support: Vec<usize> =
-            (0..layout.z_len()).filter(|&c| hand_forms.iter().any(|f| f[c] != 0.0)).collect();
-        let hand_rows = DMatrix::from_fn(hand_forms.len(), hand_support.len(), |r, c| hand_forms[r][hand_support[c]]);
-        SectionRecovery {
-            layout,
-            stations,
-            hand_rows,
-            hand_support,
-            rows,
-            support,
-            string,
-            tolerance_m,
-            rigid_string_centre_m,
-        }
+        let hand_rows = DMatrix::from_fn(hand_forms.len(), layout.z_len(), |r, c| hand_forms[r][c]);
+        SectionRecovery { layout, stations, hand_rows, rows, z_support, hand_support, string, tolerance_m, rigid }
     }
 
     /// Hands of a flexible string, in the order of their loads in a reading.
     pub fn hand_count(&self) -> usize {
-        self.string.as_ref().map_or(0, |s| s.hands.len())
+        match (&self.string, &self.rigid) {
+            (Some(s), _) => s.hands.len(),
+            (None, Some(r)) => r.hands.len(),
+            (None, None) => 0,
+        }
     }
 
     /// Values in one step's reading: per station (axial force N, bending moment N·m), the
@@ -235,8 +258,7 @@ impl SectionRecovery {
         if scratch.z.nrows() != self.layout.z_len() {
             scratch.z = DMatrix::zeros(self.layout.z_len(), CHUNK_STEPS);
             scratch.hands = DMatrix::zeros(self.hand_rows.nrows(), CHUNK_STEPS);
-            scratch.hand_z = DMatrix::zeros(self.hand_support.len(), CHUNK_STEPS);
-            scratch.read = DMatrix::zeros(self.support.len(), CHUNK_STEPS);
+            scratch.read = DMatrix::zeros(self.rows.ncols(), CHUNK_STEPS);
             scratch.pending = 0;
         }
         let z_len = self.layout.z_len();
@@ -267,14 +289,14 @@ impl SectionRecovery {
         }
         scratch.pending = 0;
         let z_len = self.layout.z_len();
-        gather(&scratch.z, &self.hand_support, p, &mut scratch.hand_z);
-        scratch.hands.columns_mut(0, p).gemm(1.0, &self.hand_rows, &scratch.hand_z.columns(0, p), 0.0);
+        scratch.hands.columns_mut(0, p).gemm(1.0, &self.hand_rows, &scratch.z.columns(0, p), 0.0);
         let (z, hands, read) = (scratch.z.as_slice(), scratch.hands.as_slice(), scratch.read.as_mut_slice());
-        let (height, width) = (self.hand_rows.nrows(), self.support.len());
-        for k in 0..p {
-            for (r, &c) in read[k * width..(k + 1) * width].iter_mut().zip(&self.support) {
-                *r = if c < z_len { z[k * z_len + c] } else { hands[k * height + c - z_len] };
-            }
+        let height = self.hand_rows.nrows();
+        let columns = z.chunks_exact(z_len).zip(hands.chunks_exact(height.max(1)).chain(std::iter::repeat(&[][..])));
+        for ((z, hands), read) in columns.zip(read.chunks_exact_mut(self.rows.ncols().max(1))).take(p) {
+            let (from_z, from_hands) = read.split_at_mut(self.z_support.len());
+            from_z.iter_mut().zip(&self.z_support).for_each(|(r, &c)| *r = z[c]);
+            from_hands.iter_mut().zip(&self.hand_support).for_each(|(r, &c)| *r = hands[c]);
         }
         let start = values.len() - p * stride;
         let rows = self.rows.nrows();
@@ -293,7 +315,10 @@ impl SectionRecovery {
     /// two hands of its span (shear by the lever about each, axial by the span's half).
     fn route_string_load(&self, state: &ArmState, load: &PointLoad, arm: &mut Vec<PointLoad>, out: &mut [f64]) {
         let Some(routing) = &self.string else {
-            let station_m = self.rigid_string_centre_m.unwrap_or(load.station_m);
+            if let Some(rigid) = &self.rigid {
+                self.share_on_rigid_hands(state, rigid, load, out);
+            }
+            let station_m = self.rigid.as_ref().map_or(load.station_m, |r| r.centre_m);
             arm.push(PointLoad { station_m, ..*load });
             return;
         };
@@ -333,6 +358,31 @@ impl SectionRecovery {
                 to_hand(span.left, left, on_left);
             }
         }
+    }
+
+    /// A contact load on a rigid string, shared by its hands as [`RigidGrip`] says.
+    fn share_on_rigid_hands(&self, state: &ArmState, rigid: &RigidGrip, load: &PointLoad, out: &mut [f64]) {
+        let position = |p: &Point| {
+            let [u, v, _] = p.rows.displacement(state.q);
+            [p.x_m + u, v]
+        };
+        let (first, last) = (0, rigid.hands.len() - 1);
+        let first_at = position(&rigid.hands[first]);
+        let mut to_hand = |h: usize, force_n: [f64; 2], moment_n_m: f64| {
+            let k = self.hand_index(h);
+            out[k] += force_n[0];
+            out[k + 1] += force_n[1];
+            out[k + 2] += moment_n_m;
+        };
+        let about_first = cross(sub(load.point_m, first_at), load.force_n);
+        if first == last {
+            to_hand(first, load.force_n, about_first);
+            return;
+        }
+        let length = position(&rigid.hands[last])[0] - first_at[0];
+        let outer = [rigid.axial_outer_share * load.force_n[0], about_first / length];
+        to_hand(last, outer, 0.0);
+        to_hand(first, sub(load.force_n, outer), 0.0);
     }
 
     /// Adds a point load on the arm to every section it is outboard of, and to the pivot.
@@ -465,6 +515,29 @@ fn string_hand_loads(
     (actions, StringRouting { hands, spans })
 }
 
+/// A rigid string's load on each hand as [`RigidGrip`] shares it, and the grip.
+fn rigid_hand_loads(arm: &ArmModel, layout: &Layout, string: &RigidString) -> (Vec<Action>, RigidGrip) {
+    let hands: Vec<Point> = string.hands_m.iter().map(|&x| arm_point(arm, x)).collect();
+    let (first, last) = (0, hands.len() - 1);
+    let centre = arm_point(arm, string.mass.position_m);
+    let load = Action::of_mass(layout, &centre, string.mass.mass_kg, string.mass.rotary_inertia_kg_m2);
+    let mut about_first = Action::zero(layout);
+    about_first.add_moved(layout, &load, &centre, &hands[first]);
+    let mut actions: Vec<Action> = hands.iter().map(|_| Action::zero(layout)).collect();
+    let [start, end] = string.ends_m;
+    let mid = 0.5 * (hands[first].x_m + hands[last].x_m);
+    let axial_outer_share = if first == last { 1.0 } else { ((end - mid) / (end - start)).clamp(0.0, 1.0) };
+    if first == last {
+        actions[first] = about_first;
+    } else {
+        let length = hands[last].x_m - hands[first].x_m;
+        let outer = Action { fx: &about_first.fx * axial_outer_share, fy: &about_first.m / length, m: layout.zero() };
+        actions[first] = Action { fx: &about_first.fx - &outer.fx, fy: &about_first.fy - &outer.fy, m: layout.zero() };
+        actions[last] = outer;
+    }
+    (actions, RigidGrip { centre_m: string.centre_m, hands, axial_outer_share })
+}
+
 /// The sections of the arm where stress is recovered: the root, every node's inboard side, and
 /// the outboard side too where a section changes or a carried body, a hand or the cylinder's
 /// pin sits (where the axial force jumps); `segment_ends_m` are the segments' outer ends.
@@ -518,18 +591,6 @@ fn project(arm: &ArmModel, dofs: &[Option<usize>; crate::beam::ELEMENT_DOFS], ro
         }
         out
     }))
-}
-
-/// Rows `rows` of the first `columns` columns of `from`, into `to`.
-fn gather(from: &DMatrix<f64>, rows: &[usize], columns: usize, to: &mut DMatrix<f64>) {
-    let (height, width) = (from.nrows(), to.nrows());
-    let (from, to) = (from.as_slice(), to.as_mut_slice());
-    for k in 0..columns {
-        let (source, target) = (&from[k * height..(k + 1) * height], &mut to[k * width..(k + 1) * width]);
-        for (t, &r) in target.iter_mut().zip(rows) {
-            *t = source[r];
-        }
-    }
 }
 
 fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {

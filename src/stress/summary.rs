@@ -118,8 +118,12 @@ pub struct PinSummary {
     /// The cylinder's rod force on the arm's pin (absent without a cylinder).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cylinder: Option<PinPeak>,
-    /// Each hand's grip on a flexible string (empty for a rigid string, which is lumped in the
-    /// arm's masses, or none).
+    /// The cylinder's force on its base pin's bracket: the arm pin's reversed (the cylinder is a
+    /// massless two-force member), its arm-frame components in the arm's frame at the time.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cylinder_base: Option<PinPeak>,
+    /// The string's load on each hand (a flexible string's through its own bending; a rigid
+    /// string's on hands read as pins, docs/sign-off.md), none without a string.
     pub hands: Vec<HandPeak>,
 }
 
@@ -430,9 +434,11 @@ fn pins(readings: &Readings) -> PinSummary {
             }
         })
         .collect();
-    PinSummary {
-        pivot: readings.force_peak(series.pivot_index, true),
-        cylinder: series.cylinder_index.map(|at| readings.force_peak(at, false)),
-        hands,
-    }
+    let cylinder = series.cylinder_index.map(|at| readings.force_peak(at, false));
+    let cylinder_base = cylinder.as_ref().map(|pin| PinPeak {
+        world_n: pin.world_n.map(|f| -f),
+        arm_n: pin.arm_n.map(|f| -f),
+        ..pin.clone()
+    });
+    PinSummary { pivot: readings.force_peak(series.pivot_index, true), cylinder, cylinder_base, hands }
 }
