@@ -27,7 +27,7 @@
 //! | `stress.worst[Pa]` | σ at the section and fibre of the run's peak stress ([`crate::stress`]) |
 //! | `pivot.force.x[N]`, `pivot.force.y[N]` | the pivot's force on the arm, world |
 //! | `cylinder_pin.force.x[N]`, `cylinder_pin.force.y[N]` | the rod's force on the arm's pin, world (with a cylinder) |
-//! | `grip.<hand>.force.axial[N]`, `.force.transverse[N]`, `.moment[N*m]` | each hand's grip on a flexible string, arm frame |
+//! | `grip.<hand>.force.axial[N]`, `.force.transverse[N]`, `.moment[N*m]` | each hand's grip on the string, arm frame (a rigid string's hands read as pins) |
 //! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
 //! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
 //!
