@@ -57,7 +57,7 @@ pub struct SeriesStation {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct StressSeries {
     /// `width` values per step, one step after another: per station (axial force N, bending
-    /// moment N·m), the pivot's force on the arm (hub frame, N), per hand of a flexible string
+    /// moment N·m), the pivot's force on the arm (hub frame, N), per hand of the held string
     /// its load on the hand (hub frame x, y, N; moment, N·m), the cylinder pin's force (world, N).
     /// Single precision (seven digits): a run's histories at every section are its largest
     /// series, and the extremes are taken in double precision as they are read.
@@ -68,7 +68,7 @@ pub struct StressSeries {
     pub stations: Vec<SeriesStation>,
     /// Where the pivot's force starts in a step's values.
     pub pivot_index: usize,
-    /// Each hand of a flexible string and where its load starts.
+    /// Each hand of the held string and where its load starts.
     pub hands: Vec<(String, usize)>,
     /// Where the cylinder pin's force starts (`None` without a cylinder).
     pub cylinder_index: Option<usize>,

@@ -127,7 +127,8 @@ pub struct RigidString {
 /// A rigid string's hands: pins on the arm (a rigid string between two clamps is statically
 /// indeterminate; pins are the determinate reading). The outer two share the transverse load by
 /// the lever rule and the axial load as the string's length lies either side of their
-/// midpoint; a hand between them, or a single hand's moment, carries what the lever leaves.
+/// midpoint; a hand between them carries nothing; a single hand carries everything, moment
+/// included.
 #[derive(Debug, Clone)]
 struct RigidGrip {
     centre_m: f64,
@@ -216,7 +217,7 @@ impl SectionRecovery {
         SectionRecovery { layout, stations, hand_rows, rows, z_support, hand_support, string, tolerance_m, rigid }
     }
 
-    /// Hands of a flexible string, in the order of their loads in a reading.
+    /// Hands of the held string, in the order of their loads in a reading.
     pub fn hand_count(&self) -> usize {
         match (&self.string, &self.rigid) {
             (Some(s), _) => s.hands.len(),
@@ -226,7 +227,7 @@ impl SectionRecovery {
     }
 
     /// Values in one step's reading: per station (axial force N, bending moment N·m), the
-    /// pivot's force on the arm (x, y hub frame, N), per hand of a flexible string the string's
+    /// pivot's force on the arm (x, y hub frame, N), per hand of the held string the string's
     /// load on it (x, y hub frame, N; moment about it, N·m).
     pub fn width(&self) -> usize {
         self.rows.nrows() + self.hand_rows.nrows()
