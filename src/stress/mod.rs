@@ -108,9 +108,12 @@ impl StressSeries {
                 let axial = forces[0] * station.fibres.per_axial_force_per_m2;
                 let bending = forces[1] * station.fibres.per_moment_per_m3;
                 for (e, s) in e.iter_mut().zip([axial + bending, axial - bending]) {
-                    // Selects, not branches or `f64::max`'s NaN handling: they vectorise.
-                    e.max = if s > e.max { s } else { e.max };
-                    e.min = if s < e.min { s } else { e.min };
+                    if s > e.max {
+                        e.max = s;
+                    }
+                    if s < e.min {
+                        e.min = s;
+                    }
                 }
             }
         }
