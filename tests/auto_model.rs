@@ -79,7 +79,7 @@ fn check_budget(name: &str, s: &pipearm::model::Model, slack_on_cheaper: Option<
     let tolerance = match (at_floor, slack_on_cheaper) {
         (true, _) => "— (the floor: the modes the scene's band needs)".to_string(),
         (false, Some(slack)) => format!("> {} off", common::relative(slack * tol)),
-        (false, None) => "— (recorded: the bound is conservative here)".to_string(),
+        (false, None) => "≤ its expected error (the bound is conservative here)".to_string(),
     };
     common::validated(
         &common::MODEL_CHOICE,
@@ -95,6 +95,14 @@ fn check_budget(name: &str, s: &pipearm::model::Model, slack_on_cheaper: Option<
         assert!(
             cheaper_off.is_none_or(|o| o > slack * tol),
             "{name}: the cheaper {cheaper} is {cheaper_off:?} from fe, within {slack} × {tol}"
+        );
+    }
+    // Above the floor the bound chose, so where the cheaper model lands within the budget after
+    // all, the bound must have over-estimated its error, never under-estimated it.
+    if !at_floor && cheaper_off.is_some_and(|o| o <= tol) {
+        assert!(
+            cheaper_off.is_some_and(|o| o <= cheaper_expected),
+            "{name}: the cheaper {cheaper} is {cheaper_off:?} from fe, more than its bound {cheaper_expected}"
         );
     }
     (expected.fraction, off(&auto, &fe), cheaper_off)
