@@ -99,10 +99,10 @@ fn check_budget(name: &str, s: &pipearm::model::Model, slack_on_cheaper: Option<
     }
     // Above the floor the bound chose, so where the cheaper model lands within the budget after
     // all, the bound must have over-estimated its error, never under-estimated it.
-    if !at_floor && cheaper_off.is_some_and(|o| o <= tol) {
+    if let Some(o) = cheaper_off.filter(|&o| !at_floor && o <= tol) {
         assert!(
-            cheaper_off.is_some_and(|o| o <= cheaper_expected),
-            "{name}: the cheaper {cheaper} is {cheaper_off:?} from fe, more than its bound {cheaper_expected}"
+            o <= cheaper_expected,
+            "{name}: the cheaper {cheaper} is {o} from fe, more than its bound {cheaper_expected}"
         );
     }
     (expected.fraction, off(&auto, &fe), cheaper_off)

@@ -146,17 +146,8 @@ impl StressProbe {
         let pin_station: Vec<f64> = cylinder.iter().map(|(c, _)| c.arm_pin_m[0]).collect();
         let stations = recovery::stations_of(arm, &segment_ends, &pin_station);
         let fibres = stations.iter().map(|s| Fibres::of(&segments[s.segment].section)).collect();
-        let rigid_string = match (&arm.beam.member, model.payload.string()) {
-            (None, Some(held)) => Some(recovery::RigidString {
-                centre_m: held.centre_m(),
-                mass: held.lumped_mass(),
-                hands_m: held.grips.iter().map(|g| g.station_m).collect(),
-                ends_m: [held.start_m(), held.start_m() + held.pipe.length_m],
-            }),
-            _ => None,
-        };
         StressProbe {
-            recovery: SectionRecovery::new(arm, stations, rigid_string.as_ref()),
+            recovery: SectionRecovery::new(arm, stations, model.payload.string()),
             fibres,
             cylinder,
             scratch: recovery::Scratch::default(),

@@ -21,6 +21,7 @@ use super::forms::{Action, Block, Form, Layout, Point};
 use crate::arm::ArmModel;
 use crate::arm::StationRows;
 use crate::beam::GAUSS_4;
+use crate::model::HeldString;
 use crate::sensor::probe::ArmState;
 
 /// Which side of a node a section is cut at.
@@ -110,20 +111,6 @@ pub struct SectionRecovery {
     rigid: Option<RigidGrip>,
 }
 
-/// A rigid string as the recovery needs it: lumped in the arm's masses, so read for its hands'
-/// loads alone.
-#[derive(Debug, Clone)]
-pub struct RigidString {
-    /// Station of its centre, where its contact loads reach the arm, m.
-    pub centre_m: f64,
-    /// Its mass and rotary inertia, lumped at its centre of mass.
-    pub mass: crate::beam::ConcentratedMass,
-    /// Its hands' stations, hub outwards, m.
-    pub hands_m: Vec<f64>,
-    /// Its ends' stations, m.
-    pub ends_m: [f64; 2],
-}
-
 /// A rigid string's hands: pins on the arm (a rigid string between two clamps is statically
 /// indeterminate; pins are the determinate reading). The outer two share the transverse load by
 /// the lever rule and the axial load as the string's length lies either side of their
@@ -151,8 +138,9 @@ pub struct Scratch {
 }
 
 impl SectionRecovery {
-    /// The recovery on `arm` at the sections `stations` (built by [`stations_of`]).
-    pub fn new(arm: &ArmModel, stations: Vec<Station>, rigid_string: Option<&RigidString>) -> Self {
+    /// The recovery on `arm` at the sections `stations` (built by [`stations_of`]); `held` is the
+    /// held string, read for its hands' loads where the arm lumps it (no string member).
+    pub fn new(arm: &ArmModel, stations: Vec<Station>, held: Option<&HeldString>) -> Self {
         let hand_count = arm.beam.member.as_ref().map_or(0, |m| m.spec.clamps_m.len());
         let layout = Layout { n: arm.elastic_dofs(), extra: 3 * hand_count };
         let tolerance_m = 1e-9 * arm.length_m();
@@ -164,8 +152,8 @@ impl SectionRecovery {
             }
             None => (Vec::new(), None),
         };
-        let rigid = rigid_string.filter(|_| string.is_none()).map(|r| {
-            let (actions, grip) = rigid_hand_loads(arm, &layout, r);
+        let rigid = held.filter(|_| string.is_none()).map(|held| {
+            let (actions, grip) = rigid_hand_loads(arm, &layout, held);
             hand_actions = actions;
             grip
         });
@@ -517,15 +505,16 @@ fn string_hand_loads(
 }
 
 /// A rigid string's load on each hand as [`RigidGrip`] shares it, and the grip.
-fn rigid_hand_loads(arm: &ArmModel, layout: &Layout, string: &RigidString) -> (Vec<Action>, RigidGrip) {
-    let hands: Vec<Point> = string.hands_m.iter().map(|&x| arm_point(arm, x)).collect();
+fn rigid_hand_loads(arm: &ArmModel, layout: &Layout, held: &HeldString) -> (Vec<Action>, RigidGrip) {
+    let hands: Vec<Point> = held.grips.iter().map(|g| arm_point(arm, g.station_m)).collect();
     let (first, last) = (0, hands.len() - 1);
-    let centre = arm_point(arm, string.mass.position_m);
-    let load = Action::of_mass(layout, &centre, string.mass.mass_kg, string.mass.rotary_inertia_kg_m2);
+    let mass = held.lumped_mass();
+    let centre = arm_point(arm, mass.position_m);
+    let load = Action::of_mass(layout, &centre, mass.mass_kg, mass.rotary_inertia_kg_m2);
     let mut about_first = Action::zero(layout);
     about_first.add_moved(layout, &load, &centre, &hands[first]);
     let mut actions: Vec<Action> = hands.iter().map(|_| Action::zero(layout)).collect();
-    let [start, end] = string.ends_m;
+    let (start, end) = (held.start_m(), held.start_m() + held.pipe.length_m);
     let mid = 0.5 * (hands[first].x_m + hands[last].x_m);
     let axial_outer_share = if first == last { 1.0 } else { ((end - mid) / (end - start)).clamp(0.0, 1.0) };
     if first == last {
@@ -536,7 +525,7 @@ fn rigid_hand_loads(arm: &ArmModel, layout: &Layout, string: &RigidString) -> (V
         actions[first] = Action { fx: &about_first.fx - &outer.fx, fy: &about_first.fy - &outer.fy, m: layout.zero() };
         actions[last] = outer;
     }
-    (actions, RigidGrip { centre_m: string.centre_m, hands, axial_outer_share })
+    (actions, RigidGrip { centre_m: held.centre_m(), hands, axial_outer_share })
 }
 
 /// The sections of the arm where stress is recovered: the root, every node's inboard side, and
