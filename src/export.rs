@@ -183,7 +183,7 @@ fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<I
     let steps = stress.steps();
     let value = |k: usize, at: usize| f64::from(stress.values[k * stress.width + at]);
     let worst = stress
-        .extremes
+        .extremes()
         .iter()
         .enumerate()
         .flat_map(|(i, e)| crate::stress::Fibre::BOTH.into_iter().zip(e).map(move |(f, e)| (i, f, e.peak_abs())))

@@ -68,7 +68,7 @@ fn sign_off_columns(series: &Series, columns: &mut Vec<(String, Vec<f64>)>) {
     let value = |k: usize, at: usize| f64::from(stress.values[k * stress.width + at]);
     let mut worst = None;
     let mut largest = f64::MIN;
-    for (i, extremes) in stress.extremes.iter().enumerate() {
+    for (i, extremes) in stress.extremes().iter().enumerate() {
         for (fibre, e) in [Fibre::Upper, Fibre::Lower].into_iter().zip(extremes) {
             let peak = e.max.abs().max(e.min.abs());
             if peak >= largest {

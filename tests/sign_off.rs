@@ -33,8 +33,7 @@ fn station(series: &Series, x_m: f64) -> usize {
 
 /// (axial force N, bending moment N·m) at station `i`, step `k`.
 fn forces(series: &Series, i: usize, k: usize) -> [f64; 2] {
-    let at = k * series.stress.width + 2 * i;
-    [series.stress.values[at].into(), series.stress.values[at + 1].into()]
+    series.stress.section_forces(i, k)
 }
 
 /// The default arm's box section by hand: 250 × 500 × 12.5 mm (A, I, c).

@@ -63,7 +63,7 @@ fn a_rigid_arm_held_at_an_angle_carries_its_free_bodys_root_moment_exactly() {
     assert_eq!(stress.peak_station_m, 0.0);
     let k = series.t_s.len() - 1;
     let root = series.stress.stations.iter().position(|st| st.station_m == 0.0).unwrap();
-    let [axial, moment] = [0, 1].map(|j| f64::from(series.stress.values[k * series.stress.width + 2 * root + j]));
+    let [axial, moment] = series.stress.section_forces(root, k);
     assert!((axial / n - 1.0).abs() < 1e-6 && (moment / m - 1.0).abs() < 1e-6, "N {axial} vs {n}, M {moment} vs {m}");
 }
 

@@ -106,6 +106,15 @@ impl<'a> Shading<'a> {
     }
 }
 
+/// Shades per unit of the scaled |σ|: the centreline is shaded in steps of 1/`SHADE_STEPS`, so
+/// that neighbouring pieces of one shade are drawn as one strip.
+const SHADE_STEPS: f64 = 20.0;
+
+/// The shade step of a scaled |σ|, 0 to `SHADE_STEPS` (`None`: no value).
+fn shade_step(value: Option<f64>) -> Option<u32> {
+    value.map(|v| (v.clamp(0.0, 1.0) * SHADE_STEPS).round() as u32)
+}
+
 /// Blue (0), green (0.4), yellow (0.7), red (1 and above); grey for no value.
 fn shade(value: Option<f64>) -> rerun::Color {
     const STOPS: [(f64, [f64; 3]); 4] = [
@@ -124,9 +133,9 @@ fn shade(value: Option<f64>) -> rerun::Color {
 }
 
 impl Writer<'_> {
-    /// The magnified centreline as one two-point strip per piece between its sampled stations,
-    /// each shaded by the largest value of the stress stations on it (the nearest if none is),
-    /// the peak's marker on it, and the legend.
+    /// The magnified centreline in pieces between its sampled stations, each shaded by the
+    /// largest value of the stress stations on it (the nearest if none is), neighbours of one
+    /// shade step drawn as one strip; the peak's marker on it, and the legend.
     pub(super) fn shaded_centreline(
         &mut self,
         shading: &Shading,
@@ -159,35 +168,52 @@ impl Writer<'_> {
                 }
             })
             .collect();
-        let (mut strips, mut colors, mut markers, mut labels) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut strips, mut colors, mut per_frame) = (Vec::new(), Vec::new(), Vec::new());
+        let mut markers = Vec::new();
         let worst_m = stations[shading.worst.0].station_m;
         for frame in frames {
             let k = t.partition_point(|s| *s < frame.t_s).min(steps - 1);
             let points = centreline_points(layout, frame, magnify);
+            let before = strips.len();
+            let mut strip: Vec<[f32; 3]> = Vec::new();
+            let mut step = None;
             for (w, on) in points.windows(2).zip(&pieces) {
-                strips.push(vec![w[0], w[1]]);
-                let value = on.iter().filter_map(|&i| shading.value(i, k)).reduce(f64::max);
-                colors.push(shade(value));
+                let here = shade_step(on.iter().filter_map(|&i| shading.value(i, k)).reduce(f64::max));
+                if strip.is_empty() || here != step {
+                    if !strip.is_empty() {
+                        strips.push(std::mem::take(&mut strip));
+                        colors.push(shade(step.map(|s| f64::from(s) / SHADE_STEPS)));
+                    }
+                    strip.push(w[0]);
+                    step = here;
+                }
+                strip.push(w[1]);
             }
+            if !strip.is_empty() {
+                strips.push(strip);
+                colors.push(shade(step.map(|s| f64::from(s) / SHADE_STEPS)));
+            }
+            per_frame.push(strips.len() - before);
             markers.push(interpolate(&frame.centreline, &points, worst_m));
-            labels.push(shading.label.clone());
         }
-        let per_frame = pieces.len();
         let radius = rerun::Radius::new_scene_units(0.006 * layout.length_m as f32);
         let times = || TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
         let columns = rerun::LineStrips3D::update_fields()
+            .with_radii(vec![radius; strips.len()])
             .with_strips(strips)
             .with_colors(colors)
-            .with_radii(vec![radius; per_frame * frames.len()])
-            .columns(std::iter::repeat_n(per_frame, frames.len()))?;
+            .columns(per_frame)?;
         self.send_columns(super::CENTRELINE_ENTITY, times(), columns)?;
         let marker = rerun::Radius::new_scene_units(0.015 * layout.length_m as f32);
-        let columns = rerun::Points3D::update_fields()
-            .with_positions(markers)
-            .with_labels(labels)
-            .with_colors(vec![rerun::Color::from_rgb(200, 0, 200); frames.len()])
-            .with_radii(vec![marker; frames.len()])
+        // The marker moves with the arm; its label, colour and size do not: logged once, at the
+        // first frame, they hold for the later ones.
+        let style = rerun::Points3D::update_fields()
+            .with_labels([shading.label.clone()])
+            .with_colors([rerun::Color::from_rgb(200, 0, 200)])
+            .with_radii([marker])
             .columns_of_unit_batches()?;
+        self.send_columns(PEAK_ENTITY, TimeColumn::new_duration_secs("sim_time", [first.t_s]), style)?;
+        let columns = rerun::Points3D::update_fields().with_positions(markers).columns_of_unit_batches()?;
         self.send_columns(PEAK_ENTITY, times(), columns)?;
         self.legend(shading, layout)
     }
@@ -264,17 +290,18 @@ impl Writer<'_> {
             }
         }
         let magnitude = |at: usize| {
-            (0..steps).map(move |k| {
+            move |k: usize| {
                 let v = &series.values[k * series.width + at..];
-                f64::from(v[0]).hypot(f64::from(v[1]))
-            })
+                let (x, y) = (f64::from(v[0]), f64::from(v[1]));
+                (x * x + y * y).sqrt()
+            }
         };
-        self.send(PIVOT_ENTITY, magnitude(series.pivot_index))?;
+        self.send_kept(PIVOT_ENTITY, magnitude(series.pivot_index))?;
         if let Some(at) = series.cylinder_index {
-            self.send("plots/pins/cylinder", magnitude(at))?;
+            self.send_kept("plots/pins/cylinder", magnitude(at))?;
         }
         for (hand, at) in &series.hands {
-            self.send(&format!("plots/pins/hands/{hand}"), magnitude(*at))?;
+            self.send_kept(&format!("plots/pins/hands/{hand}"), magnitude(*at))?;
         }
         Ok(())
     }
@@ -294,7 +321,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn the_shades_run_blue_to_red_and_grey_without_a_value() {
+    fn the_shades_step_by_a_twentieth_and_run_blue_to_red_and_grey_without_a_value() {
+        assert_eq!(shade_step(Some(0.52)), Some(10));
+        assert_eq!(shade_step(Some(0.53)), Some(11));
+        assert_eq!(shade_step(Some(4.0)), Some(20));
+        assert_eq!(shade_step(None), None);
         assert_eq!(shade(Some(0.0)), rerun::Color::from_rgb(40, 90, 220));
         assert_eq!(shade(Some(1.0)), rerun::Color::from_rgb(220, 30, 30));
         assert_eq!(shade(Some(3.0)), shade(Some(1.0)), "above yield stays red");

@@ -48,6 +48,14 @@ impl Writer<'_> {
         values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
     }
 
+    /// The kept steps of `value` of a step, evaluated at those steps only.
+    pub(super) fn send_kept(&mut self, entity: &str, value: impl Fn(usize) -> f64) -> RecordingStreamResult<()> {
+        let rows: Vec<usize> = (0..self.run.series.t_s.len()).filter(|&k| self.keeps(k)).collect();
+        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| self.run.series.t_s[k]));
+        let columns = rerun::Scalars::new(rows.into_iter().map(value)).columns_of_unit_batches()?;
+        self.send_columns(entity, times, columns)
+    }
+
     pub(super) fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
         let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
         let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;

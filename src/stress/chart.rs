@@ -22,7 +22,7 @@ pub fn envelope(
     let points: Vec<(f64, f64, f64)> = series
         .stations
         .iter()
-        .zip(&series.extremes)
+        .zip(series.extremes())
         .map(|(s, [upper, lower])| (s.station_m, MPA * upper.max.max(lower.max), MPA * upper.min.min(lower.min)))
         .collect();
     let mut ends = Vec::new();

@@ -105,9 +105,19 @@ impl Layout {
         7 * self.n + scalar as usize
     }
 
-    /// z at a state: the hub (angle, rate, acceleration), gravity `g` and q, q̇, q̈.
-    pub fn fill(&self, z: &mut [f64], hub: &DriveState, g: f64, q: &[f64], qd: &[f64], qdd: &[f64]) {
-        let (s, c) = hub.angle_rad.sin_cos();
+    /// z at a state: the hub (rate, acceleration; its angle's sine and cosine `sin_cos`, which
+    /// the caller has at hand), gravity `g` and q, q̇, q̈.
+    #[allow(clippy::too_many_arguments)]
+    pub fn fill(
+        &self,
+        z: &mut [f64],
+        hub: &DriveState,
+        (s, c): (f64, f64),
+        g: f64,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+    ) {
         let (w, alpha) = (hub.rate_rad_s, hub.accel_rad_s2);
         let scalars = [alpha, w * w, g * c, g * s];
         let n = self.n;
@@ -280,7 +290,7 @@ mod tests {
     /// Evaluates a form at a state.
     fn at(layout: &Layout, form: &Form, hub: &DriveState, g: f64, q: &[f64], qd: &[f64], qdd: &[f64]) -> f64 {
         let mut z = vec![0.0; layout.z_len()];
-        layout.fill(&mut z, hub, g, q, qd, qdd);
+        layout.fill(&mut z, hub, hub.angle_rad.sin_cos(), g, q, qd, qdd);
         form.dot(&DVector::from_vec(z))
     }
 

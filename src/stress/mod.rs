@@ -56,9 +56,10 @@ pub struct SeriesStation {
 /// A run's stress and pin readings per step, and what each value is.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct StressSeries {
-    /// `width` values per step, one step after another: per station (axial force N, bending
-    /// moment N·m), the pivot's force on the arm (hub frame, N), per hand of the held string
-    /// its load on the hand (hub frame x, y, N; moment, N·m), the cylinder pin's force (world, N).
+    /// `width` values per step, one step after another: the axial force of each station (N),
+    /// then the bending moment of each (N·m), the pivot's force on the arm (hub frame, N), per
+    /// hand of the held string its load on the hand (hub frame x, y, N; moment, N·m), the
+    /// cylinder pin's force (world, N). Read a station's through [`Self::section_forces`].
     /// Single precision (seven digits): a run's histories at every section are its largest
     /// series, and the extremes are taken in double precision as they are read.
     pub values: Vec<f32>,
@@ -72,8 +73,53 @@ pub struct StressSeries {
     pub hands: Vec<(String, usize)>,
     /// Where the cylinder pin's force starts (`None` without a cylinder).
     pub cylinder_index: Option<usize>,
-    /// Per station and fibre (upper, lower), the largest and smallest σ over the steps read, Pa.
-    pub extremes: Vec<[Extremes; 2]>,
+    running: RunningExtremes,
+}
+
+/// The largest and smallest σ at each station's fibres over the steps read, Pa: one array per
+/// fibre and bound, so that a step's stations are compared a vector's width at a time.
+#[derive(Debug, Clone, PartialEq, Default)]
+struct RunningExtremes {
+    per_axial_force_per_m2: Vec<f64>,
+    per_moment_per_m3: Vec<f64>,
+    /// Upper fibre, then lower.
+    max: [Vec<f64>; 2],
+    min: [Vec<f64>; 2],
+}
+
+impl RunningExtremes {
+    fn new(stations: &[SeriesStation]) -> Self {
+        let none = |v: f64| vec![v; stations.len()];
+        RunningExtremes {
+            per_axial_force_per_m2: stations.iter().map(|s| s.fibres.per_axial_force_per_m2).collect(),
+            per_moment_per_m3: stations.iter().map(|s| s.fibres.per_moment_per_m3).collect(),
+            max: [none(Extremes::NONE.max), none(Extremes::NONE.max)],
+            min: [none(Extremes::NONE.min), none(Extremes::NONE.min)],
+        }
+    }
+
+    /// Takes the σ of one step whose stations carry `axial` and `moment`.
+    fn take(&mut self, axial: &[f64], moment: &[f64]) {
+        let n = axial.len();
+        let (moment, per_axial, per_moment) =
+            (&moment[..n], &self.per_axial_force_per_m2[..n], &self.per_moment_per_m3[..n]);
+        let [max_upper, max_lower] = self.max.each_mut().map(|v| &mut v[..n]);
+        let [min_upper, min_lower] = self.min.each_mut().map(|v| &mut v[..n]);
+        for i in 0..n {
+            let axial = axial[i] * per_axial[i];
+            let bending = moment[i] * per_moment[i];
+            let (upper, lower) = (axial + bending, axial - bending);
+            // Written as selects, not `f64::max`, so that they compile to vector max/min.
+            max_upper[i] = if upper > max_upper[i] { upper } else { max_upper[i] };
+            min_upper[i] = if upper < min_upper[i] { upper } else { min_upper[i] };
+            max_lower[i] = if lower > max_lower[i] { lower } else { max_lower[i] };
+            min_lower[i] = if lower < min_lower[i] { lower } else { min_lower[i] };
+        }
+    }
+
+    fn at(&self, i: usize) -> [Extremes; 2] {
+        [0, 1].map(|f| Extremes { max: self.max[f][i], min: self.min[f][i] })
+    }
 }
 
 /// The largest and smallest σ at a station's fibre, Pa.
@@ -101,29 +147,32 @@ impl StressSeries {
         self.values.len() / self.width.max(1)
     }
 
-    /// Appends the readings `steps` (`width` values a step), taking their σ into `extremes`.
+    /// Appends the readings `steps` (`width` values a step), taking their σ into the extremes.
     fn append(&mut self, steps: &[f64]) {
+        let count = self.stations.len();
         for step in steps.chunks_exact(self.width) {
-            for ((station, forces), e) in self.stations.iter().zip(step.chunks_exact(2)).zip(self.extremes.iter_mut()) {
-                let axial = forces[0] * station.fibres.per_axial_force_per_m2;
-                let bending = forces[1] * station.fibres.per_moment_per_m3;
-                for (e, s) in e.iter_mut().zip([axial + bending, axial - bending]) {
-                    if s > e.max {
-                        e.max = s;
-                    }
-                    if s < e.min {
-                        e.min = s;
-                    }
-                }
-            }
+            let (axial, rest) = step.split_at(count);
+            self.running.take(axial, &rest[..count]);
         }
         self.values.extend(steps.iter().map(|v| *v as f32));
     }
 
+    /// Per station, hub outwards, and fibre (upper, lower): the largest and smallest σ over the
+    /// steps read, Pa.
+    pub fn extremes(&self) -> Vec<[Extremes; 2]> {
+        (0..self.stations.len()).map(|i| self.running.at(i)).collect()
+    }
+
+    /// (axial force N, bending moment N·m) at station `i`, step `k`.
+    pub fn section_forces(&self, i: usize, k: usize) -> [f64; 2] {
+        let at = k * self.width + i;
+        [self.values[at].into(), self.values[at + self.stations.len()].into()]
+    }
+
     /// σ at station `i`, `fibre`, step `k`, Pa.
     pub fn stress_pa(&self, i: usize, fibre: Fibre, k: usize) -> f64 {
-        let at = k * self.width + 2 * i;
-        self.stations[i].fibres.stress_pa(fibre, self.values[at].into(), self.values[at + 1].into())
+        let [axial_n, moment_n_m] = self.section_forces(i, k);
+        self.stations[i].fibres.stress_pa(fibre, axial_n, moment_n_m)
     }
 }
 
@@ -174,7 +223,7 @@ impl StressProbe {
     /// An empty series of this probe's readings, with room for `steps` steps; `hands` names the
     /// string's hands in order.
     pub fn series(&self, steps: usize, hands: &[String]) -> StressSeries {
-        let stations = self
+        let stations: Vec<SeriesStation> = self
             .recovery
             .stations
             .iter()
@@ -184,13 +233,13 @@ impl StressProbe {
         StressSeries {
             values: Vec::with_capacity(steps * self.width()),
             width: self.width(),
-            stations,
             pivot_index: self.recovery.pivot_index(),
             hands: (0..self.recovery.hand_count())
                 .map(|h| (hands.get(h).cloned().unwrap_or_else(|| format!("hand {h}")), self.recovery.hand_index(h)))
                 .collect(),
             cylinder_index: self.cylinder.is_some().then(|| self.recovery.width()),
-            extremes: vec![[Extremes::NONE; 2]; self.recovery.stations.len()],
+            running: RunningExtremes::new(&stations),
+            stations,
         }
     }
 
@@ -236,7 +285,7 @@ impl StressProbe {
         let out = &mut self.pending;
         let start = out.len();
         out.resize(start + self.recovery.width(), 0.0);
-        self.recovery.stage(state, g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
+        self.recovery.stage(state, (s, c), g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
         out.extend_from_slice(&pin_world);
     }
 

@@ -99,7 +99,7 @@ pub struct SectionRecovery {
     pub stations: Vec<Station>,
     /// The string's loads on its hands (x, y, moment per hand) over z.
     hand_rows: DMatrix<f64>,
-    /// Per station (N, M), then the pivot's force on the arm (x, y, hub frame), over the entries
+    /// Each station's N, then each one's M, then the pivot's force on the arm (x, y, hub frame), over the entries
     /// of z in `z_support`, then the hand loads in `hand_support` (the arm's sections do not see
     /// a string's own coordinates but through its hands).
     rows: DMatrix<f64>,
@@ -178,14 +178,15 @@ impl SectionRecovery {
         loads.sort_by(|a, b| b.0.total_cmp(&a.0));
         let mut outboard = Action::zero(&layout);
         let mut next = 0;
-        let mut forms: Vec<Form> = vec![layout.zero(); 2 * stations.len()];
+        let count = stations.len();
+        let mut forms: Vec<Form> = vec![layout.zero(); 2 * count];
         for (i, station) in stations.iter().enumerate().rev() {
             while next < loads.len() && station.has_outboard(loads[next].0, tolerance_m) {
                 outboard.add(&loads[next].1);
                 next += 1;
             }
-            forms[2 * i] = outboard.axial_through(&layout, &station.point);
-            forms[2 * i + 1] = -outboard.moment_about(&layout, &station.point);
+            forms[i] = outboard.axial_through(&layout, &station.point);
+            forms[count + i] = -outboard.moment_about(&layout, &station.point);
         }
         // The pivot holds everything: its force on the arm balances the loads on the whole.
         let mut whole = Action::zero(&layout);
@@ -214,8 +215,8 @@ impl SectionRecovery {
         }
     }
 
-    /// Values in one step's reading: per station (axial force N, bending moment N·m), the
-    /// pivot's force on the arm (x, y hub frame, N), per hand of the held string the string's
+    /// Values in one step's reading: each station's axial force (N), then each one's bending
+    /// moment (N·m; two blocks, so that a step's stations are read as vectors), the pivot's force on the arm (x, y hub frame, N), per hand of the held string the string's
     /// load on it (x, y hub frame, N; moment about it, N·m).
     pub fn width(&self) -> usize {
         self.rows.nrows() + self.hand_rows.nrows()
@@ -231,13 +232,15 @@ impl SectionRecovery {
         2 * self.stations.len() + 2 + 3 * h
     }
 
-    /// Reads the state `state` under gravity `g`, with point loads on the arm `on_arm` and on
+    /// Reads the state `state` (its hub angle's sine and cosine `sin_cos`) under gravity `g`, with point loads on the arm `on_arm` and on
     /// the held string `on_string`, into `out` ([`Self::width`] zeros): the point loads' share
     /// now, the rest at the next [`Self::flush`] of the readings in `scratch`, which must come
     /// within [`Self::due`].
+    #[allow(clippy::too_many_arguments)]
     pub fn stage(
         &self,
         state: &ArmState,
+        sin_cos: (f64, f64),
         g: f64,
         on_arm: &[PointLoad],
         on_string: &[PointLoad],
@@ -252,7 +255,7 @@ impl SectionRecovery {
         }
         let z_len = self.layout.z_len();
         let column = &mut scratch.z.as_mut_slice()[scratch.pending * z_len..(scratch.pending + 1) * z_len];
-        self.layout.fill(column, &state.hub, g, state.q.as_slice(), state.qd.as_slice(), state.qdd.as_slice());
+        self.layout.fill(column, &state.hub, sin_cos, g, state.q.as_slice(), state.qd.as_slice(), state.qdd.as_slice());
         scratch.pending += 1;
         scratch.loads.clear();
         scratch.loads.extend_from_slice(on_arm);
@@ -379,15 +382,16 @@ impl SectionRecovery {
         let pivot = self.pivot_index();
         out[pivot] -= load.force_n[0];
         out[pivot + 1] -= load.force_n[1];
-        for (station, forces) in self.stations.iter().zip(out.chunks_exact_mut(2)) {
+        let (axial, moment) = out.split_at_mut(self.stations.len());
+        for ((station, axial), moment) in self.stations.iter().zip(axial).zip(moment) {
             if !station.has_outboard(load.station_m, self.tolerance_m) {
                 continue;
             }
             let [u, v, phi] = station.point.rows.displacement(state.q);
             let lever = sub(load.point_m, [station.x_m() + u, v]);
             let (s, c) = phi.sin_cos();
-            forces[0] += c * load.force_n[0] + s * load.force_n[1];
-            forces[1] -= cross(lever, load.force_n);
+            *axial += c * load.force_n[0] + s * load.force_n[1];
+            *moment -= cross(lever, load.force_n);
         }
     }
 }

@@ -210,7 +210,7 @@ impl Readings<'_> {
         self.series
             .stations
             .iter()
-            .zip(&self.series.extremes)
+            .zip(self.series.extremes())
             .map(|(station, [u, l])| (station.station_m, u.max.max(l.max), u.min.min(l.min)))
             .collect()
     }
@@ -254,7 +254,7 @@ pub fn sign_off_run(model: &Model, series: &crate::run::Series) -> SignOff {
 pub fn sign_off(model: &Model, readings: &Readings, sensors: &[SensorSeries], stress_factor: f64) -> SignOff {
     let segments = &model.robot.arm.segments;
     let stations = &readings.series.stations;
-    let extremes = &readings.series.extremes;
+    let extremes = &readings.series.extremes();
     let mut from = 0.0;
     let mut segment_stress = Vec::new();
     let mut fatigue_places = Vec::new();
