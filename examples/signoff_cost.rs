@@ -1,8 +1,9 @@
 //! What the sign-off (stress recovery, pin loads, rainflow) costs the default run
 //! (docs/sign-off.md, "Cost"), its feature on and off in the same build:
 //!
-//! - `valgrind --tool=callgrind target/release/examples/signoff_cost with|without`: one run,
-//!   to count instructions;
+//! - `valgrind --tool=callgrind target/release/examples/signoff_cost with|here|without`: one
+//!   run, to count instructions (`with`: the readings completed on a worker thread beside the
+//!   step, as a run on its own does; `here`: on the step's thread, as inside a sweep's pool);
 //! - `target/release/examples/signoff_cost paired 60`: the simulation alone (`run_with`), the
 //!   two alternately 60 times each in one process: the median of the paired ratios;
 //! - `target/release/examples/signoff_cost job 60`: the same for the default run as
@@ -78,7 +79,12 @@ fn main() {
             let scenario = Scenario::load(&default_scenario()).expect("the default scenario loads");
             let sign_off = mode.as_deref() != Some("without");
             let options = RunOptions { sign_off, ..RunOptions::default() };
-            let (summary, _) = run_with(&scenario.model, &options).expect("the default scenario runs");
+            let run = || run_with(&scenario.model, &options).expect("the default scenario runs");
+            // Inside rayon's pool the readings are completed on the step's thread, as in a sweep.
+            let (summary, _) = match mode.as_deref() {
+                Some("here") => rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("a pool").install(run),
+                _ => run(),
+            };
             let peak = summary.sign_off.map(|s| s.stress.peak_stress_pa);
             println!("sign-off {sign_off}: {} steps, peak stress {peak:?} Pa", summary.steps);
             return;

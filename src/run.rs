@@ -363,39 +363,46 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
     read_string(&scene, model.physics.gravity_m_s2, series);
     stress.iter_mut().for_each(|p| p.read(&scene, &first, model.physics.gravity_m_s2, &mut series.stress));
     keeper.keep(&scene, series, options.capture_frames, false);
-    let mut steps = 0;
-    // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
-    // be a step too short to take.
-    let sliver = 1e-6 * h;
-    // The free-motion step the error control proposes next (it restarts from `h` after contact).
-    let mut free_h = h;
-    while end - scene.arm.time_s() > sliver {
-        let remaining = end - scene.arm.time_s();
-        let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
-        steps += 1;
-        match &control {
-            Some(control) if scene.free_step_allowed(free_h) => {
-                let (_, next) =
-                    scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
-                free_h = next;
+    // The steps, in a closure so that the stress readings are completed whether they end or
+    // the run diverges (a diverged run's series keeps its readings up to there).
+    let mut step_to_end = || -> Result<usize, SceneError> {
+        let mut steps = 0;
+        // The last step is stretched or cut to land on `end`: a sliver left over by rounding would
+        // be a step too short to take.
+        let sliver = 1e-6 * h;
+        // The free-motion step the error control proposes next (it restarts from `h` after contact).
+        let mut free_h = h;
+        while end - scene.arm.time_s() > sliver {
+            let remaining = end - scene.arm.time_s();
+            let last_within = |wanted: f64| if remaining <= wanted + sliver { remaining } else { wanted };
+            steps += 1;
+            match &control {
+                Some(control) if scene.free_step_allowed(free_h) => {
+                    let (_, next) =
+                        scene.step_free(last_within(free_h), control).map_err(|e| diverged_step(model, &scene, e))?;
+                    free_h = next;
+                }
+                _ => {
+                    scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
+                    free_h = h;
+                }
             }
-            _ => {
-                scene.step(last_within(h)).map_err(|e| diverged_step(model, &scene, e))?;
-                free_h = h;
+            let sample = scene.arm.sample();
+            guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
+            if let Some(what) = scene.fault() {
+                return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
             }
+            record(&scene, &sample, series, &mut trackers);
+            read_sensors(&scene, &probes, series);
+            read_string(&scene, model.physics.gravity_m_s2, series);
+            stress.iter_mut().for_each(|p| p.read(&scene, &sample, model.physics.gravity_m_s2, &mut series.stress));
+            keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
         }
-        let sample = scene.arm.sample();
-        guard.check(&sample).map_err(|d| divergence_error(model, &scene, d))?;
-        if let Some(what) = scene.fault() {
-            return Err(divergence_error(model, &scene, Divergence { t_s: sample.t_s, what }));
-        }
-        record(&scene, &sample, series, &mut trackers);
-        read_sensors(&scene, &probes, series);
-        read_string(&scene, model.physics.gravity_m_s2, series);
-        stress.iter_mut().for_each(|p| p.read(&scene, &sample, model.physics.gravity_m_s2, &mut series.stress));
-        keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
-    }
+        Ok(steps)
+    };
+    let stepped = step_to_end();
     stress.iter_mut().for_each(|p| p.finish(&mut series.stress));
+    let steps = stepped?;
     let sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;

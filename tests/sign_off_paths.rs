@@ -1,6 +1,7 @@
 //! The sign-off's less travelled paths: a rigid arm's stress against its free body by hand, a
 //! change of section along the arm (both sides of the joint by hand), a robot without a yield
-//! strength (no utilisation, and the summary says why), and the stress envelope's chart.
+//! strength (no utilisation, and the summary says why), the stress envelope's chart, and the
+//! readings completed beside the step the same as on it.
 
 use std::path::Path;
 
@@ -8,7 +9,7 @@ use pipearm::arm::Fidelity;
 use pipearm::beam::SectionShape;
 use pipearm::drive::MotionProfile;
 use pipearm::model::Model;
-use pipearm::run::run;
+use pipearm::run::{RunOptions, run, run_with};
 use pipearm::scenario::Scenario;
 use pipearm::stress::Fibre;
 
@@ -140,4 +141,21 @@ fn both_sides_of_a_change_of_section_carry_the_joints_moment_over_their_own_modu
         assert_eq!(series.stress.stations[i].segment, usize::from(wall < 0.02));
     }
     assert_eq!(summary.sign_off.unwrap().stress.segments.len(), 2);
+}
+
+/// A run on its own completes its stress readings on a worker thread beside the step; inside
+/// rayon's pool (as a sweep's cases run) on the step's thread. Both do the same arithmetic in
+/// the same order: the series must agree to the bit.
+#[test]
+fn the_readings_completed_beside_the_step_equal_those_completed_on_it() {
+    let model = default_model();
+    let options = RunOptions::default();
+    let (_, beside) = run_with(&model, &options).unwrap();
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let (_, here) = pool.install(|| run_with(&model, &options)).unwrap();
+    let (beside, here) = (&beside.stress, &here.stress);
+    assert!(beside.steps() > 1000, "{} steps", beside.steps());
+    assert_eq!(beside.steps(), here.steps());
+    assert!(beside.values.iter().zip(&here.values).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_eq!(beside.extremes(), here.extremes());
 }

@@ -7,11 +7,14 @@
 //! - [`summary`]: the run's peaks, utilisation, pin loads and fatigue, from the series.
 //! - [`chart`]: the stress envelope along the arm, as an SVG.
 
+mod beside;
 pub mod chart;
 pub mod fibres;
 pub mod forms;
 pub mod recovery;
 pub mod summary;
+
+use std::sync::Arc;
 
 use crate::actuator::{Actuator, Cylinder, PinCoupling};
 use crate::arm::{ArmModel, ArmSample};
@@ -24,19 +27,23 @@ pub use fibres::{Fibre, Fibres};
 pub use recovery::{PointLoad, SectionRecovery, Station};
 pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
 
-/// The per-step reading of the run's stresses and pin loads.
-#[derive(Debug, Clone)]
+/// The per-step reading of the run's stresses and pin loads. Each step's vector and point loads
+/// are staged on the step's thread; a chunk of them at a time is completed beside it
+/// ([`beside`]).
+#[derive(Debug)]
 pub struct StressProbe {
     /// The recovery of section forces.
-    pub recovery: SectionRecovery,
+    pub recovery: Arc<SectionRecovery>,
     /// The outer fibres of each station's section.
     pub fibres: Vec<Fibres>,
     cylinder: Option<(Cylinder, PinCoupling)>,
-    scratch: recovery::Scratch,
+    staged: beside::Staged,
     on_arm: Vec<PointLoad>,
     on_string: Vec<PointLoad>,
-    /// The readings of the steps whose linear part is not evaluated yet.
-    pending: Vec<f64>,
+    /// Where the staged chunks are completed: a worker once one is started; `None` before the
+    /// first chunk, or on the step's thread.
+    worker: Option<beside::Worker>,
+    worker_tried: bool,
 }
 
 /// Values per step after the recovery's: the cylinder pin's force on the arm, world X, Y, N.
@@ -147,14 +154,14 @@ impl StressSeries {
         self.values.len() / self.width.max(1)
     }
 
-    /// Appends the readings `steps` (`width` values a step), taking their σ into the extremes.
-    fn append(&mut self, steps: &[f64]) {
-        let count = self.stations.len();
-        for step in steps.chunks_exact(self.width) {
-            let (axial, rest) = step.split_at(count);
-            self.running.take(axial, &rest[..count]);
-        }
-        self.values.extend(steps.iter().map(|v| *v as f32));
+    /// Its values and extremes so far, handed to whoever completes the next chunks.
+    fn take_evaluated(&mut self) -> beside::Evaluated {
+        beside::Evaluated { values: std::mem::take(&mut self.values), extremes: std::mem::take(&mut self.running) }
+    }
+
+    /// Takes back its values and extremes.
+    fn put_evaluated(&mut self, evaluated: beside::Evaluated) {
+        (self.values, self.running) = (evaluated.values, evaluated.extremes);
     }
 
     /// Per station, hub outwards, and fibre (upper, lower): the largest and smallest σ over the
@@ -196,13 +203,14 @@ impl StressProbe {
         let stations = recovery::stations_of(arm, &segment_ends, &pin_station);
         let fibres = stations.iter().map(|s| Fibres::of(&segments[s.segment].section)).collect();
         StressProbe {
-            recovery: SectionRecovery::new(arm, stations, model.payload.string()),
+            recovery: Arc::new(SectionRecovery::new(arm, stations, model.payload.string())),
             fibres,
             cylinder,
-            scratch: recovery::Scratch::default(),
+            staged: beside::Staged::default(),
             on_arm: Vec::new(),
             on_string: Vec::new(),
-            pending: Vec::new(),
+            worker: None,
+            worker_tried: false,
         }
     }
 
@@ -279,22 +287,45 @@ impl StressProbe {
             self.on_arm.push(PointLoad { station_m: ax, point_m, force_n });
             pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
         }
-        if self.recovery.due(&self.scratch) {
-            self.finish(series);
+        if self.recovery.due(&self.staged.scratch) {
+            self.hand_over(series);
         }
-        let out = &mut self.pending;
-        let start = out.len();
-        out.resize(start + self.recovery.width(), 0.0);
-        self.recovery.stage(state, (s, c), g, &self.on_arm, &self.on_string, &mut self.scratch, &mut out[start..]);
-        out.extend_from_slice(&pin_world);
+        let staged = &mut self.staged;
+        let start = staged.values.len();
+        staged.values.resize(start + self.recovery.width(), 0.0);
+        let out = &mut staged.values[start..];
+        self.recovery.stage(state, (s, c), g, &self.on_arm, &self.on_string, &mut staged.scratch, out);
+        staged.values.extend_from_slice(&pin_world);
+    }
+
+    /// Completes the staged chunk into `series`: on the worker, started with the first chunk,
+    /// or here.
+    fn hand_over(&mut self, series: &mut StressSeries) {
+        let stride = self.width();
+        if !self.worker_tried {
+            self.worker_tried = true;
+            match beside::Worker::start(self.recovery.clone(), stride, series.take_evaluated()) {
+                Ok(worker) => self.worker = Some(worker),
+                Err(evaluated) => series.put_evaluated(*evaluated),
+            }
+        }
+        match &self.worker {
+            Some(worker) => self.staged = worker.hand_over(std::mem::take(&mut self.staged)),
+            None => {
+                let mut evaluated = series.take_evaluated();
+                evaluated.take(&self.recovery, stride, &mut self.staged);
+                series.put_evaluated(evaluated);
+            }
+        }
     }
 
     /// Completes the readings in `series`: call once after the last read, and before using it.
     pub fn finish(&mut self, series: &mut StressSeries) {
-        let stride = self.width();
-        self.recovery.flush(&mut self.scratch, &mut self.pending, stride);
-        series.append(&self.pending);
-        self.pending.clear();
+        self.hand_over(series);
+        if let Some(worker) = self.worker.take() {
+            series.put_evaluated(worker.finish());
+        }
+        self.worker_tried = false;
     }
 }
 

@@ -125,7 +125,7 @@ struct RigidGrip {
 }
 
 /// Steps read before their linear part is evaluated, as one matrix product.
-const CHUNK_STEPS: usize = 64;
+const CHUNK_STEPS: usize = 512;
 
 /// The readings waiting for their linear part: z of each, the step's point loads.
 #[derive(Debug, Clone, Default)]
