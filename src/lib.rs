@@ -27,6 +27,7 @@ pub mod guard;
 pub mod integrate;
 pub mod measured;
 pub mod model;
+pub mod point_load;
 pub mod record;
 pub mod regression;
 pub mod robot;

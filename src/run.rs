@@ -11,8 +11,9 @@ use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::integrate::StepControl;
 use crate::model::{DEFAULT_TOLERANCE_M, Model};
+use crate::point_load::{PointLoad, World};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
-use crate::sensor::probe::{ArmState, PointLoad};
+use crate::sensor::probe::ArmState;
 pub use crate::sensor::summary::{ChannelPeak, SensorSummary};
 use crate::sensor::{Sensor, SensorProbe};
 use crate::stress::StressProbe;
@@ -586,14 +587,10 @@ fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
     let (hub, q, qd) = scene.arm.kinematics();
     let qdd = scene.arm.elastic_accelerations();
     let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
-    let loads: Vec<PointLoad> = scene
+    let loads: Vec<PointLoad<World>> = scene
         .pairs()
         .filter(|p| p.force_n > 0.0 && p.side == crate::scene::Side::Arm)
-        .map(|p| PointLoad {
-            station_m: p.station_m,
-            point_m: p.point_m,
-            force_n: p.normal_world.map(|n| p.force_n * n),
-        })
+        .map(|p| PointLoad::new(p.station_m, p.point_m, p.normal_world.map(|n| p.force_n * n)))
         .collect();
     for (probe, out) in probes.iter().zip(&mut series.sensors) {
         out.values.push(probe.read(&state, &loads));

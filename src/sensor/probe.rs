@@ -22,6 +22,7 @@
 //!   beam's sections carry no rotary inertia of their own (Euler–Bernoulli), as in the model.
 //! - Encoder: θ and θ̇.
 
+use crate::point_load::{PointLoad, World};
 use nalgebra::DVector;
 
 use super::{Sensor, SensorKind};
@@ -40,17 +41,6 @@ pub struct ArmState<'a> {
     pub qd: &'a DVector<f64>,
     /// q̈.
     pub qdd: &'a DVector<f64>,
-}
-
-/// A force on the arm from outside (a pad's contact force).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointLoad {
-    /// Arm station it acts at, m.
-    pub station_m: f64,
-    /// Point of application relative to the pivot, world X, Y, m.
-    pub point_m: [f64; 2],
-    /// Force on the arm, world X, Y, N.
-    pub force_n: [f64; 2],
 }
 
 /// A mass point of the arm outboard of a strain gauge: station, mass, rotary inertia, rows.
@@ -92,7 +82,7 @@ impl SensorProbe {
 
     /// The two channels' readings (units of [`SensorKind::channels`]) at `state`, with the
     /// pads' forces `loads`.
-    pub fn read(&self, state: &ArmState, loads: &[PointLoad]) -> [f64; 2] {
+    pub fn read(&self, state: &ArmState, loads: &[PointLoad<World>]) -> [f64; 2] {
         let rows = self.rows.as_ref();
         match self.sensor.kind {
             SensorKind::Encoder => [state.hub.angle_rad, state.hub.rate_rad_s],
@@ -111,7 +101,7 @@ impl SensorProbe {
 
     /// Bending moment at the station by force summation over the outboard part, N·m
     /// (positive: upper face in tension).
-    fn bending_moment(&self, station_m: f64, rows: &StationRows, state: &ArmState, loads: &[PointLoad]) -> f64 {
+    fn bending_moment(&self, station_m: f64, rows: &StationRows, state: &ArmState, loads: &[PointLoad<World>]) -> f64 {
         let section = Kinematics::of(station_m, rows, state);
         let g = self.gravity_m_s2;
         let hub = &state.hub;

@@ -19,12 +19,13 @@ use std::sync::Arc;
 use crate::actuator::{Actuator, Cylinder, PinCoupling};
 use crate::arm::{ArmModel, ArmSample};
 use crate::model::Model;
+use crate::point_load::{Hub, PointLoad, World};
 use crate::scene::{Scene, Side as PairSide};
 use crate::sensor::probe::ArmState;
 
 pub use crate::robot::{SegmentChecks, YieldSource, YieldStrength};
 pub use fibres::{Fibre, Fibres};
-pub use recovery::{PointLoad, SectionRecovery, Station};
+pub use recovery::{SectionRecovery, Station};
 pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
 
 /// The per-step reading of the run's stresses and pin loads. Each step's vector and point loads
@@ -38,8 +39,8 @@ pub struct StressProbe {
     pub fibres: Vec<Fibres>,
     cylinder: Option<(Cylinder, PinCoupling)>,
     staged: beside::Staged,
-    on_arm: Vec<PointLoad>,
-    on_string: Vec<PointLoad>,
+    on_arm: Vec<PointLoad<Hub>>,
+    on_string: Vec<PointLoad<Hub>>,
     /// Where the staged chunks are completed: a worker once one is started; `None` before the
     /// first chunk, or on the step's thread.
     worker: Option<beside::Worker>,
@@ -258,12 +259,10 @@ impl StressProbe {
         let qdd = scene.arm.elastic_accelerations();
         let state = &ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
         let (s, c) = hub.angle_rad.sin_cos();
-        let to_hub = |[x, y]: [f64; 2]| [c * x + s * y, -s * x + c * y];
         self.on_arm.clear();
         self.on_string.clear();
         for pair in scene.pairs().filter(|p| p.force_n > 0.0) {
-            let force = pair_force(pair);
-            let load = PointLoad { station_m: pair.station_m, point_m: to_hub(pair.point_m), force_n: to_hub(force) };
+            let load = PointLoad::<World>::new(pair.station_m, pair.point_m, pair_force(pair)).in_hub((s, c));
             match pair.side {
                 PairSide::Arm => self.on_arm.push(load),
                 PairSide::String => self.on_string.push(load),
@@ -284,7 +283,7 @@ impl StressProbe {
             let [ax, ay] = cylinder.arm_pin_m;
             let point_m = [ax + rows[0].dot(&q), ay + rows[1].dot(&q)];
             let force_n = pin.body_unit.map(|u| rod_force_n * u);
-            self.on_arm.push(PointLoad { station_m: ax, point_m, force_n });
+            self.on_arm.push(PointLoad::new(ax, point_m, force_n));
             pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
         }
         if self.recovery.due(&self.staged.scratch) {

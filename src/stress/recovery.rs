@@ -22,6 +22,7 @@ use crate::arm::ArmModel;
 use crate::arm::StationRows;
 use crate::beam::GAUSS_4;
 use crate::model::HeldString;
+use crate::point_load::{Hub, PointLoad};
 use crate::sensor::probe::ArmState;
 
 /// Which side of a node a section is cut at.
@@ -57,17 +58,6 @@ impl Station {
             Side::Outboard => x_m > self.x_m() + tolerance_m,
         }
     }
-}
-
-/// A point load on the machine at one step, hub frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointLoad {
-    /// Arm station of the part it acts on, m (a string's: along the arm's axis).
-    pub station_m: f64,
-    /// Point of application, hub frame, m.
-    pub point_m: [f64; 2],
-    /// Force, hub frame, N.
-    pub force_n: [f64; 2],
 }
 
 /// A hand holding a flexible string: where, and how its span to the next hand is cut.
@@ -134,7 +124,7 @@ pub struct Scratch {
     hands: DMatrix<f64>,
     read: DMatrix<f64>,
     pending: usize,
-    loads: Vec<PointLoad>,
+    loads: Vec<PointLoad<Hub>>,
 }
 
 impl SectionRecovery {
@@ -242,8 +232,8 @@ impl SectionRecovery {
         state: &ArmState,
         sin_cos: (f64, f64),
         g: f64,
-        on_arm: &[PointLoad],
-        on_string: &[PointLoad],
+        on_arm: &[PointLoad<Hub>],
+        on_string: &[PointLoad<Hub>],
         scratch: &mut Scratch,
         out: &mut [f64],
     ) {
@@ -305,13 +295,19 @@ impl SectionRecovery {
     /// A contact load on the held string, as the loads it puts on the arm: a rigid string's at
     /// its centre station; a flexible one's through the hand of its overhang, or shared by the
     /// two hands of its span (shear by the lever about each, axial by the span's half).
-    fn route_string_load(&self, state: &ArmState, load: &PointLoad, arm: &mut Vec<PointLoad>, out: &mut [f64]) {
+    fn route_string_load(
+        &self,
+        state: &ArmState,
+        load: &PointLoad<Hub>,
+        arm: &mut Vec<PointLoad<Hub>>,
+        out: &mut [f64],
+    ) {
         let Some(routing) = &self.string else {
             if let Some(rigid) = &self.rigid {
                 self.share_on_rigid_hands(state, rigid, load, out);
             }
             let station_m = self.rigid.as_ref().map_or(load.station_m, |r| r.centre_m);
-            arm.push(PointLoad { station_m, ..*load });
+            arm.push(load.at_station(station_m));
             return;
         };
         let x = load.station_m;
@@ -326,7 +322,7 @@ impl SectionRecovery {
             out[k] += force_n[0];
             out[k + 1] += force_n[1];
             out[k + 2] += cross(sub(point_m, r), force_n);
-            arm.push(PointLoad { station_m: routing.hands[h].point.x_m, point_m, force_n });
+            arm.push(PointLoad::new(routing.hands[h].point.x_m, point_m, force_n));
         };
         let span =
             routing.spans.iter().find(|s| x > routing.hands[s.left].point.x_m && x < routing.hands[s.right].point.x_m);
@@ -353,7 +349,7 @@ impl SectionRecovery {
     }
 
     /// A contact load on a rigid string, shared by its hands as [`RigidGrip`] says.
-    fn share_on_rigid_hands(&self, state: &ArmState, rigid: &RigidGrip, load: &PointLoad, out: &mut [f64]) {
+    fn share_on_rigid_hands(&self, state: &ArmState, rigid: &RigidGrip, load: &PointLoad<Hub>, out: &mut [f64]) {
         let position = |p: &Point| {
             let [u, v, _] = p.rows.displacement(state.q);
             [p.x_m + u, v]
@@ -378,7 +374,7 @@ impl SectionRecovery {
     }
 
     /// Adds a point load on the arm to every section it is outboard of, and to the pivot.
-    fn add_point_load(&self, state: &ArmState, load: &PointLoad, out: &mut [f64]) {
+    fn add_point_load(&self, state: &ArmState, load: &PointLoad<Hub>, out: &mut [f64]) {
         let pivot = self.pivot_index();
         out[pivot] -= load.force_n[0];
         out[pivot + 1] -= load.force_n[1];
