@@ -402,25 +402,31 @@ fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<
         Ok(steps)
     };
     let stepped = step_to_end();
-    stress.iter_mut().for_each(|p| p.finish(&mut series.stress));
-    let steps = stepped?;
-    let sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
-    let wall_time_s = started.elapsed().as_secs_f64();
-    let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
-    (summary.model_reason, summary.model_expected_error) = (choice.reason, choice.expected);
-    summary.sign_off = sign_off;
-    if let Some(choice) = string_choice {
-        if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
-            series.string_peak_stress = peaks.peaks_over(&series.modal_q, series.modal_dofs).unwrap_or_default();
+    // The last stress readings go to their worker now and are collected after the run's own
+    // summary, which does not read them.
+    stress.iter_mut().for_each(|p| p.hand_over_rest(&mut series.stress));
+    let summarized = stepped.and_then(|steps| {
+        let wall_time_s = started.elapsed().as_secs_f64();
+        let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
+        (summary.model_reason, summary.model_expected_error) = (choice.reason, choice.expected);
+        if let Some(choice) = string_choice {
+            if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
+                series.string_peak_stress = peaks.peaks_over(&series.modal_q, series.modal_dofs).unwrap_or_default();
+            }
+            let readings = crate::sensor::string::StringSeries {
+                t_s: &series.t_s,
+                tip_deflection_m: &series.string_tip_deflection_m,
+                stress_pa: &series.string_stress_pa,
+                peak_stress: &series.string_peak_stress,
+            };
+            summary.string =
+                Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, &readings)?);
         }
-        let readings = crate::sensor::string::StringSeries {
-            t_s: &series.t_s,
-            tip_deflection_m: &series.string_tip_deflection_m,
-            stress_pa: &series.string_stress_pa,
-            peak_stress: &series.string_peak_stress,
-        };
-        summary.string = Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, &readings)?);
-    }
+        Ok(summary)
+    });
+    stress.iter_mut().for_each(|p| p.finish(&mut series.stress));
+    let mut summary = summarized?;
+    summary.sign_off = stress.map(|_| crate::stress::sign_off_run(model, series));
     Ok(summary)
 }
 

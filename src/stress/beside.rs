@@ -1,70 +1,171 @@
-//! The staged readings' linear part — the two matrix products of a chunk of steps, the extremes
-//! and the single-precision copy — evaluated on a thread of its own beside the step loop, which
-//! then only stages each step's vector and point loads.
+//! The recovery's work — each step's vector and point loads staged, the two matrix products of
+//! a chunk of steps, the extremes and the single-precision copy — done on a thread of its own
+//! beside the step loop, which only records what the recovery reads of each step: the hub's
+//! state, q, q̇, q̈, the point loads and the cylinder pin's force.
 //!
-//! Chunks go to the worker in order and are evaluated in order, with the same arithmetic as on
+//! Chunks go to the worker in order and are completed in order, with the same arithmetic as on
 //! the step's thread, so the series is the same to the bit. A run inside rayon's pool (a sweep,
 //! an envelope, a design) has its cores busy with other runs already: there the chunks are
-//! evaluated on the step's thread, as they are where no thread can be started.
+//! completed on the step's thread, as they are with one core to run on (`taskset -c 0`) and
+//! where no thread can be started.
 
 use std::sync::Arc;
 use std::sync::mpsc::{Receiver, Sender, channel};
 use std::thread::JoinHandle;
 
+use nalgebra::DVector;
+
 use super::RunningExtremes;
 use super::recovery::{Scratch, SectionRecovery};
+use crate::drive::DriveState;
+use crate::point_load::{Hub, PointLoad};
+use crate::sensor::probe::ArmState;
 
-/// A chunk of staged readings: the products' inputs, and each step's values so far (the point
-/// loads' share), `stride` a step.
+/// Steps to a chunk: the products' width, and the steps between two hand-overs.
+pub(super) const CHUNK_STEPS: usize = super::recovery::CHUNK_STEPS;
+
+/// A chunk of steps as the step's thread records them.
 #[derive(Debug, Clone, Default)]
-pub(super) struct Staged {
-    pub scratch: Scratch,
-    pub values: Vec<f64>,
+pub(super) struct Recorded {
+    /// Per step: the hub's state and its angle's sine and cosine.
+    hubs: Vec<(DriveState, (f64, f64))>,
+    /// Per step: q, q̇, q̈.
+    elastic: Vec<f64>,
+    /// Per step: the cylinder pin's force on the arm, world X, Y, N.
+    pins: Vec<[f64; 2]>,
+    /// The steps' point loads: the step in the chunk, whether on the held string, the load.
+    loads: Vec<(usize, bool, PointLoad<Hub>)>,
 }
 
-/// What the evaluated chunks have made: the series' values and extremes.
+impl Recorded {
+    /// Steps recorded.
+    pub fn steps(&self) -> usize {
+        self.hubs.len()
+    }
+
+    /// Records a step: `state`, its hub angle's `sin_cos`, the point loads on the arm `on_arm`
+    /// and on the string `on_string`, the cylinder pin's force `pin_world_n`.
+    pub fn push(
+        &mut self,
+        state: &ArmState,
+        sin_cos: (f64, f64),
+        (on_arm, on_string): (&[PointLoad<Hub>], &[PointLoad<Hub>]),
+        pin_world_n: [f64; 2],
+    ) {
+        let k = self.steps();
+        self.hubs.push((state.hub, sin_cos));
+        for v in [state.q, state.qd, state.qdd] {
+            self.elastic.extend_from_slice(v.as_slice());
+        }
+        self.pins.push(pin_world_n);
+        self.loads.extend(on_arm.iter().map(|l| (k, false, *l)).chain(on_string.iter().map(|l| (k, true, *l))));
+    }
+
+    /// Empties it, keeping its room.
+    pub fn clear(&mut self) {
+        self.hubs.clear();
+        self.elastic.clear();
+        self.pins.clear();
+        self.loads.clear();
+    }
+}
+
+/// What the completed chunks have made: the series' values and extremes.
 #[derive(Debug, Default)]
 pub(super) struct Evaluated {
     pub values: Vec<f32>,
     pub extremes: RunningExtremes,
 }
 
-impl Evaluated {
-    /// Completes `staged` (`stride` values a step) and takes it in, leaving it empty.
-    pub fn take(&mut self, recovery: &SectionRecovery, stride: usize, staged: &mut Staged) {
-        recovery.flush(&mut staged.scratch, &mut staged.values, stride);
-        let count = recovery.stations.len();
-        for step in staged.values.chunks_exact(stride) {
-            let (axial, rest) = step.split_at(count);
-            self.extremes.take(axial, &rest[..count]);
+/// Completes recorded chunks: the recovery under gravity `g`, with its scratch.
+#[derive(Debug)]
+pub(super) struct Completer {
+    recovery: Arc<SectionRecovery>,
+    g: f64,
+    /// Values a step: the recovery's, then the cylinder pin's.
+    stride: usize,
+    scratch: Scratch,
+    values: Vec<f64>,
+    elastic: [DVector<f64>; 3],
+    on_arm: Vec<PointLoad<Hub>>,
+    on_string: Vec<PointLoad<Hub>>,
+}
+
+impl Completer {
+    pub fn new(recovery: Arc<SectionRecovery>, g: f64, stride: usize) -> Self {
+        let empty = || DVector::zeros(0);
+        Completer {
+            recovery,
+            g,
+            stride,
+            scratch: Scratch::default(),
+            values: Vec::new(),
+            elastic: [empty(), empty(), empty()],
+            on_arm: Vec::new(),
+            on_string: Vec::new(),
         }
-        self.values.extend(staged.values.iter().map(|v| *v as f32));
-        staged.values.clear();
+    }
+
+    /// Completes `recorded` (at most [`CHUNK_STEPS`] steps) into `into`.
+    pub fn complete(&mut self, recorded: &Recorded, into: &mut Evaluated) {
+        let Completer { recovery, g, stride, scratch, values, elastic, on_arm, on_string } = self;
+        let n = recorded.elastic.len() / (3 * recorded.steps().max(1));
+        let mut loads = recorded.loads.iter().peekable();
+        for (k, (hub, sin_cos)) in recorded.hubs.iter().enumerate() {
+            let step = &recorded.elastic[3 * n * k..3 * n * (k + 1)];
+            for (v, part) in elastic.iter_mut().zip(step.chunks_exact(n.max(1))) {
+                if v.len() != n {
+                    *v = DVector::zeros(n);
+                }
+                v.as_mut_slice().copy_from_slice(part);
+            }
+            on_arm.clear();
+            on_string.clear();
+            while let Some((_, on, load)) = loads.next_if(|(j, _, _)| *j == k) {
+                if *on { on_string.push(*load) } else { on_arm.push(*load) }
+            }
+            let start = values.len();
+            values.resize(start + recovery.width(), 0.0);
+            let [q, qd, qdd] = &*elastic;
+            let state = ArmState { hub: *hub, q, qd, qdd };
+            recovery.stage(&state, *sin_cos, *g, on_arm, on_string, scratch, &mut values[start..]);
+            values.extend_from_slice(&recorded.pins[k]);
+        }
+        recovery.flush(scratch, values, *stride);
+        let count = recovery.stations.len();
+        for step in values.chunks_exact(*stride) {
+            let (axial, rest) = step.split_at(count);
+            into.extremes.take(axial, &rest[..count]);
+        }
+        into.values.extend(values.iter().map(|v| *v as f32));
+        values.clear();
     }
 }
 
-/// The worker evaluating a run's chunks, with the emptied chunks it hands back for reuse.
+/// The worker completing a run's chunks, with the emptied chunks it hands back for reuse.
 #[derive(Debug)]
 pub(super) struct Worker {
-    to_worker: Sender<Staged>,
-    emptied: Receiver<Staged>,
+    to_worker: Sender<Recorded>,
+    emptied: Receiver<Recorded>,
     thread: JoinHandle<Evaluated>,
 }
 
 impl Worker {
-    /// A worker taking `evaluated` on, or `evaluated` back where it should not run (inside
-    /// rayon's pool) or cannot (no thread to be had).
-    pub fn start(recovery: Arc<SectionRecovery>, stride: usize, evaluated: Evaluated) -> Result<Self, Box<Evaluated>> {
-        if rayon::current_thread_index().is_some() {
+    /// A worker with `completer` taking `evaluated` on, or `evaluated` back where it should not
+    /// run (inside rayon's pool, or with one core to run on) or cannot (no thread to be had).
+    pub fn start(mut completer: Completer, evaluated: Evaluated) -> Result<Self, Box<Evaluated>> {
+        let second_core = std::thread::available_parallelism().is_ok_and(|n| n.get() > 1);
+        if rayon::current_thread_index().is_some() || !second_core {
             return Err(Box::new(evaluated));
         }
-        let (to_worker, staged) = channel::<Staged>();
+        let (to_worker, recorded) = channel::<Recorded>();
         let (give_back, emptied) = channel();
         let (hand_in, handed_in) = channel::<Evaluated>();
         let spawned = std::thread::Builder::new().name("pipearm-stress".into()).spawn(move || {
             let Ok(mut evaluated) = handed_in.recv() else { return Evaluated::default() };
-            for mut chunk in staged {
-                evaluated.take(&recovery, stride, &mut chunk);
+            for mut chunk in recorded {
+                completer.complete(&chunk, &mut evaluated);
+                chunk.clear();
                 // The step loop may have finished: then nobody reuses it.
                 give_back.send(chunk).ok();
             }
@@ -79,10 +180,10 @@ impl Worker {
         }
     }
 
-    /// Hands `staged` over and returns an emptied chunk to stage the next in.
-    pub fn hand_over(&self, staged: Staged) -> Staged {
+    /// Hands `recorded` over and returns an emptied chunk to record the next in.
+    pub fn hand_over(&self, recorded: Recorded) -> Recorded {
         // A send fails only if the worker has panicked; `finish` reports that.
-        self.to_worker.send(staged).ok();
+        self.to_worker.send(recorded).ok();
         self.emptied.try_recv().unwrap_or_default()
     }
 

@@ -38,12 +38,14 @@ pub struct StressProbe {
     /// The outer fibres of each station's section.
     pub fibres: Vec<Fibres>,
     cylinder: Option<(Cylinder, PinCoupling)>,
-    staged: beside::Staged,
+    recorded: beside::Recorded,
     on_arm: Vec<PointLoad<Hub>>,
     on_string: Vec<PointLoad<Hub>>,
-    /// Where the staged chunks are completed: a worker once one is started; `None` before the
-    /// first chunk, or on the step's thread.
+    gravity_m_s2: f64,
+    /// Where the recorded chunks are completed: a worker once one is started; here, by
+    /// `completer`, where none is.
     worker: Option<beside::Worker>,
+    completer: Option<beside::Completer>,
     worker_tried: bool,
 }
 
@@ -207,10 +209,12 @@ impl StressProbe {
             recovery: Arc::new(SectionRecovery::new(arm, stations, model.payload.string())),
             fibres,
             cylinder,
-            staged: beside::Staged::default(),
+            recorded: beside::Recorded::default(),
             on_arm: Vec::new(),
             on_string: Vec::new(),
+            gravity_m_s2: 0.0,
             worker: None,
+            completer: None,
             worker_tried: false,
         }
     }
@@ -286,41 +290,48 @@ impl StressProbe {
             self.on_arm.push(PointLoad::new(ax, point_m, force_n));
             pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
         }
-        if self.recovery.due(&self.staged.scratch) {
+        self.gravity_m_s2 = g;
+        self.recorded.push(state, (s, c), (&self.on_arm, &self.on_string), pin_world);
+        if self.recorded.steps() == beside::CHUNK_STEPS {
             self.hand_over(series);
         }
-        let staged = &mut self.staged;
-        let start = staged.values.len();
-        staged.values.resize(start + self.recovery.width(), 0.0);
-        let out = &mut staged.values[start..];
-        self.recovery.stage(state, (s, c), g, &self.on_arm, &self.on_string, &mut staged.scratch, out);
-        staged.values.extend_from_slice(&pin_world);
     }
 
-    /// Completes the staged chunk into `series`: on the worker, started with the first chunk,
+    /// Completes the recorded chunk into `series`: on the worker, started with the first chunk,
     /// or here.
     fn hand_over(&mut self, series: &mut StressSeries) {
-        let stride = self.width();
+        let (recovery, g, stride) = (&self.recovery, self.gravity_m_s2, self.width());
+        let completer = || beside::Completer::new(recovery.clone(), g, stride);
         if !self.worker_tried {
             self.worker_tried = true;
-            match beside::Worker::start(self.recovery.clone(), stride, series.take_evaluated()) {
+            match beside::Worker::start(completer(), series.take_evaluated()) {
                 Ok(worker) => self.worker = Some(worker),
                 Err(evaluated) => series.put_evaluated(*evaluated),
             }
         }
         match &self.worker {
-            Some(worker) => self.staged = worker.hand_over(std::mem::take(&mut self.staged)),
+            Some(worker) => self.recorded = worker.hand_over(std::mem::take(&mut self.recorded)),
             None => {
+                let completer = self.completer.get_or_insert_with(completer);
                 let mut evaluated = series.take_evaluated();
-                evaluated.take(&self.recovery, stride, &mut self.staged);
+                completer.complete(&self.recorded, &mut evaluated);
                 series.put_evaluated(evaluated);
+                self.recorded.clear();
             }
+        }
+    }
+
+    /// Hands the readings not yet handed over to whoever completes them (without waiting for
+    /// a worker to finish them: [`Self::finish`] does).
+    pub fn hand_over_rest(&mut self, series: &mut StressSeries) {
+        if self.recorded.steps() > 0 || !self.worker_tried {
+            self.hand_over(series);
         }
     }
 
     /// Completes the readings in `series`: call once after the last read, and before using it.
     pub fn finish(&mut self, series: &mut StressSeries) {
-        self.hand_over(series);
+        self.hand_over_rest(series);
         if let Some(worker) = self.worker.take() {
             series.put_evaluated(worker.finish());
         }

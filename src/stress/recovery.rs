@@ -115,7 +115,7 @@ struct RigidGrip {
 }
 
 /// Steps read before their linear part is evaluated, as one matrix product.
-const CHUNK_STEPS: usize = 512;
+pub const CHUNK_STEPS: usize = 512;
 
 /// The readings waiting for their linear part: z of each, the step's point loads.
 #[derive(Debug, Clone, Default)]
@@ -225,7 +225,7 @@ impl SectionRecovery {
     /// Reads the state `state` (its hub angle's sine and cosine `sin_cos`) under gravity `g`, with point loads on the arm `on_arm` and on
     /// the held string `on_string`, into `out` ([`Self::width`] zeros): the point loads' share
     /// now, the rest at the next [`Self::flush`] of the readings in `scratch`, which must come
-    /// within [`Self::due`].
+    /// within [`CHUNK_STEPS`] readings.
     #[allow(clippy::too_many_arguments)]
     pub fn stage(
         &self,
@@ -255,11 +255,6 @@ impl SectionRecovery {
         for load in &scratch.loads {
             self.add_point_load(state, load, out);
         }
-    }
-
-    /// Whether the staged readings must be flushed before the next.
-    pub fn due(&self, scratch: &Scratch) -> bool {
-        scratch.pending == CHUNK_STEPS
     }
 
     /// Adds the linear part of the staged readings to the last of `values`, `stride` values a
