@@ -44,12 +44,20 @@ impl PointLoad<World> {
     }
 }
 
+impl PointLoad<Hub> {
+    /// The load in the world frame, the hub at the angle whose sine and cosine are `(s, c)`.
+    pub fn in_world(&self, (s, c): (f64, f64)) -> PointLoad<World> {
+        let turn = |[x, y]: [f64; 2]| [c * x - s * y, s * x + c * y];
+        PointLoad::new(self.station_m, turn(self.point_m), turn(self.force_n))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn a_load_in_the_hub_frame_keeps_its_moment_and_turns_with_the_hub() {
+    fn a_load_in_the_hub_frame_keeps_its_moment_turns_with_the_hub_and_back() {
         let angle: f64 = 0.7;
         let world = PointLoad::<World>::new(2.0, [1.5, 2.5], [-30.0, 40.0]);
         let hub = world.in_hub(angle.sin_cos());
@@ -60,5 +68,10 @@ mod tests {
         let along = PointLoad::<World>::new(0.0, [0.0; 2], [angle.cos(), angle.sin()]).in_hub(angle.sin_cos());
         assert!((along.force_n[0] - 1.0).abs() < 1e-12 && along.force_n[1].abs() < 1e-12);
         assert_eq!(hub.at_station(3.0).station_m, 3.0);
+        let back = hub.in_world(angle.sin_cos());
+        for j in 0..2 {
+            assert!((back.point_m[j] - world.point_m[j]).abs() < 1e-12);
+            assert!((back.force_n[j] - world.force_n[j]).abs() < 1e-12);
+        }
     }
 }

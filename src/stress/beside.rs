@@ -21,9 +21,6 @@ use crate::drive::DriveState;
 use crate::point_load::{Hub, PointLoad};
 use crate::sensor::probe::ArmState;
 
-/// Steps to a chunk: the products' width, and the steps between two hand-overs.
-pub(super) const CHUNK_STEPS: usize = super::recovery::CHUNK_STEPS;
-
 /// A chunk of steps as the step's thread records them.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Recorded {
@@ -106,7 +103,7 @@ impl Completer {
         }
     }
 
-    /// Completes `recorded` (at most [`CHUNK_STEPS`] steps) into `into`.
+    /// Completes `recorded` (at most [`super::recovery::CHUNK_STEPS`] steps) into `into`.
     pub fn complete(&mut self, recorded: &Recorded, into: &mut Evaluated) {
         let Completer { recovery, g, stride, scratch, values, elastic, on_arm, on_string } = self;
         let n = recorded.elastic.len() / (3 * recorded.steps().max(1));

@@ -171,6 +171,12 @@ pub struct Point {
 }
 
 impl Point {
+    /// Where the point is at elastic coordinates `q`: hub frame (x + u, v), m.
+    pub fn deformed_m(&self, q: &DVector<f64>) -> [f64; 2] {
+        let [u, v, _] = self.rows.displacement(q);
+        [self.x_m + u, v]
+    }
+
     fn u(&self) -> &DVector<f64> {
         &self.rows.0[0]
     }

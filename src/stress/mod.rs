@@ -28,9 +28,8 @@ pub use fibres::{Fibre, Fibres};
 pub use recovery::{SectionRecovery, Station};
 pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
 
-/// The per-step reading of the run's stresses and pin loads. Each step's vector and point loads
-/// are staged on the step's thread; a chunk of them at a time is completed beside it
-/// ([`beside`]).
+/// The per-step reading of the run's stresses and pin loads. The step's thread records what the
+/// recovery reads of each step; a chunk of steps at a time is completed beside it ([`beside`]).
 #[derive(Debug)]
 pub struct StressProbe {
     /// The recovery of section forces.
@@ -287,12 +286,13 @@ impl StressProbe {
             let [ax, ay] = cylinder.arm_pin_m;
             let point_m = [ax + rows[0].dot(&q), ay + rows[1].dot(&q)];
             let force_n = pin.body_unit.map(|u| rod_force_n * u);
-            self.on_arm.push(PointLoad::new(ax, point_m, force_n));
-            pin_world = [c * force_n[0] - s * force_n[1], s * force_n[0] + c * force_n[1]];
+            let pin_load = PointLoad::<Hub>::new(ax, point_m, force_n);
+            self.on_arm.push(pin_load);
+            pin_world = pin_load.in_world((s, c)).force_n;
         }
         self.gravity_m_s2 = g;
         self.recorded.push(state, (s, c), (&self.on_arm, &self.on_string), pin_world);
-        if self.recorded.steps() == beside::CHUNK_STEPS {
+        if self.recorded.steps() == recovery::CHUNK_STEPS {
             self.hand_over(series);
         }
     }

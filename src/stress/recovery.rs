@@ -89,9 +89,9 @@ pub struct SectionRecovery {
     pub stations: Vec<Station>,
     /// The string's loads on its hands (x, y, moment per hand) over z.
     hand_rows: DMatrix<f64>,
-    /// Each station's N, then each one's M, then the pivot's force on the arm (x, y, hub frame), over the entries
-    /// of z in `z_support`, then the hand loads in `hand_support` (the arm's sections do not see
-    /// a string's own coordinates but through its hands).
+    /// Each station's N, then each one's M, then the pivot's force on the arm (x, y, hub
+    /// frame), over the entries of z in `z_support`, then the hand loads in `hand_support` (the
+    /// arm's sections do not see a string's own coordinates but through its hands).
     rows: DMatrix<f64>,
     z_support: Vec<usize>,
     hand_support: Vec<usize>,
@@ -114,7 +114,8 @@ struct RigidGrip {
     axial_outer_share: f64,
 }
 
-/// Steps read before their linear part is evaluated, as one matrix product.
+/// Steps read before their linear part is evaluated, as one matrix product: the steps a
+/// [`super::StressProbe`] records between two hand-overs.
 pub const CHUNK_STEPS: usize = 512;
 
 /// The readings waiting for their linear part: z of each, the step's point loads.
@@ -206,7 +207,8 @@ impl SectionRecovery {
     }
 
     /// Values in one step's reading: each station's axial force (N), then each one's bending
-    /// moment (N·m; two blocks, so that a step's stations are read as vectors), the pivot's force on the arm (x, y hub frame, N), per hand of the held string the string's
+    /// moment (N·m; two blocks, so that a step's stations are read as vectors), the pivot's
+    /// force on the arm (x, y hub frame, N), per hand of the held string the string's
     /// load on it (x, y hub frame, N; moment about it, N·m).
     pub fn width(&self) -> usize {
         self.rows.nrows() + self.hand_rows.nrows()
@@ -222,7 +224,8 @@ impl SectionRecovery {
         2 * self.stations.len() + 2 + 3 * h
     }
 
-    /// Reads the state `state` (its hub angle's sine and cosine `sin_cos`) under gravity `g`, with point loads on the arm `on_arm` and on
+    /// Reads the state `state` (its hub angle's sine and cosine `sin_cos`) under gravity `g`,
+    /// with point loads on the arm `on_arm` and on
     /// the held string `on_string`, into `out` ([`Self::width`] zeros): the point loads' share
     /// now, the rest at the next [`Self::flush`] of the readings in `scratch`, which must come
     /// within [`CHUNK_STEPS`] readings.
@@ -306,11 +309,7 @@ impl SectionRecovery {
             return;
         };
         let x = load.station_m;
-        let position = |h: usize| {
-            let p = &routing.hands[h].point;
-            let [u, v, _] = p.rows.displacement(state.q);
-            [p.x_m + u, v]
-        };
+        let position = |h: usize| routing.hands[h].point.deformed_m(state.q);
         let mut to_hand = |h: usize, point_m: [f64; 2], force_n: [f64; 2]| {
             let r = position(h);
             let k = self.hand_index(h);
@@ -345,12 +344,8 @@ impl SectionRecovery {
 
     /// A contact load on a rigid string, shared by its hands as [`RigidGrip`] says.
     fn share_on_rigid_hands(&self, state: &ArmState, rigid: &RigidGrip, load: &PointLoad<Hub>, out: &mut [f64]) {
-        let position = |p: &Point| {
-            let [u, v, _] = p.rows.displacement(state.q);
-            [p.x_m + u, v]
-        };
         let (first, last) = (0, rigid.hands.len() - 1);
-        let first_at = position(&rigid.hands[first]);
+        let first_at = rigid.hands[first].deformed_m(state.q);
         let mut to_hand = |h: usize, force_n: [f64; 2], moment_n_m: f64| {
             let k = self.hand_index(h);
             out[k] += force_n[0];
@@ -362,7 +357,7 @@ impl SectionRecovery {
             to_hand(first, load.force_n, about_first);
             return;
         }
-        let length = position(&rigid.hands[last])[0] - first_at[0];
+        let length = rigid.hands[last].deformed_m(state.q)[0] - first_at[0];
         let outer = [rigid.axial_outer_share * load.force_n[0], about_first / length];
         to_hand(last, outer, 0.0);
         to_hand(first, sub(load.force_n, outer), 0.0);
