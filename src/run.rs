@@ -7,6 +7,7 @@ use serde::Serialize;
 use crate::actuator::{ActuatorOutputs, ActuatorSummary};
 use crate::analysis::{Residual, StiffnessClass, residual_of_run};
 use crate::arm::{ArmError, ArmSample, Fidelity};
+use crate::compile::Compiler;
 use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::integrate::StepControl;
@@ -300,45 +301,39 @@ pub fn run(model: &Model, fidelity: Option<Fidelity>) -> Result<(RunSummary, Ser
 
 /// Runs a model with `options`.
 pub fn run_with(model: &Model, options: &RunOptions) -> Result<(RunSummary, Series), SceneError> {
-    let (summary, series) = run_partial(model, options);
-    summary.map(|summary| (summary, series))
+    run_reusing(model, options, &Compiler::new())
+}
+
+/// Runs a model with `options`, taking what `compiler` kept from earlier runs that it shares
+/// (the beam, its modes, the reduced arm) and keeping what it compiles for the next.
+pub fn run_reusing(
+    model: &Model,
+    options: &RunOptions,
+    compiler: &Compiler,
+) -> Result<(RunSummary, Series), SceneError> {
+    let mut series = Series::default();
+    let summary = simulate(model, options, &mut series, compiler)?;
+    Ok((summary, series))
 }
 
 /// Runs a model with `options` and returns its series whether it finished or not: up to the
 /// divergence for a run the guard stopped (empty if the scene could not be built).
 pub fn run_partial(model: &Model, options: &RunOptions) -> (Result<RunSummary, SceneError>, Series) {
     let mut series = Series::default();
-    let summary = simulate(model, options, &mut series);
+    let summary = simulate(model, options, &mut series, &Compiler::new());
     (summary, series)
 }
 
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
-fn simulate(model: &Model, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
-    // The beam and its modes, built once for the model choice and the arm. The string's fidelity
-    // is chosen once for the beam and the summary, and the beam `auto` built to choose it is the
-    // run's.
-    let (string_choice, built) = match model.payload.string() {
-        Some(_) => {
-            let (choice, built) = crate::select::string_fidelity_and_beam(model)?;
-            (Some(choice), built)
-        }
-        None => (None, None),
-    };
-    let (beam, modes) = match built {
-        Some(built) => built,
-        None => {
-            let string = string_choice.as_ref().map(|c| c.fidelity);
-            let beam = crate::beam::BeamModel::new(model.beam_spec_with_string(string)?)?;
-            let modes = beam.modes()?;
-            (beam, modes)
-        }
-    };
-    let choice = match options.fidelity {
-        Some(fidelity) => crate::select::Choice::set(fidelity, "set on the command line"),
-        None => crate::select::fidelity_for(model, &beam, &modes)?,
-    };
+fn simulate(
+    model: &Model,
+    options: &RunOptions,
+    series: &mut Series,
+    compiler: &Compiler,
+) -> Result<RunSummary, SceneError> {
+    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm } =
+        crate::select::compile_arm(model, options.fidelity, compiler)?;
     let fidelity = choice.fidelity;
-    let arm = crate::arm::ArmModel::with_modes(beam, modes, fidelity, model.arm_options())?;
     let mut scene = Scene::with_arm(model, arm)?;
     let h = model.time.step_s;
     let control = free_step_control(model);

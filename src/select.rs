@@ -26,12 +26,15 @@
 //!
 //! `tests/auto_model.rs` holds the choice within its budget of fe on every shipped scenario.
 
+use std::sync::Arc;
+
 use nalgebra::Complex;
 use serde::Serialize;
 
 use crate::analysis::StiffnessClass;
-use crate::arm::{ArmModel, ArmSimulation, Fidelity};
+use crate::arm::{ArmError, ArmModel, ArmSimulation, Fidelity};
 use crate::beam::{BeamError, BeamModel, ModalBasis};
+use crate::compile::{CompiledBeam, Compiler};
 use crate::drive::MotionLaw;
 use crate::model::{Dampener, Model};
 
@@ -196,6 +199,39 @@ fn excited_band(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<B
     Ok(Band { band_hz, modes: n, reasons })
 }
 
+/// A run's arm as compiled for it: the fidelities chosen and the arm reduced to its own.
+pub struct CompiledArm {
+    /// The held string's fidelity, with a string.
+    pub string: Option<Choice>,
+    /// The arm's fidelity.
+    pub arm: Choice,
+    /// The arm reduced to it.
+    pub model: Arc<ArmModel>,
+}
+
+/// Chooses the string's fidelity and the arm's (`fidelity` if given) and reduces the arm to it,
+/// taking from `compiler` what it kept. The beam `auto` compiled to choose the string's fidelity
+/// is the run's.
+pub fn compile_arm(model: &Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<CompiledArm, ArmError> {
+    let (string, compiled) = match model.payload.string() {
+        Some(_) => {
+            let (choice, compiled) = string_fidelity_and_beam(model, compiler)?;
+            (Some(choice), compiled)
+        }
+        None => (None, None),
+    };
+    let compiled = match compiled {
+        Some(compiled) => compiled,
+        None => compiler.beam(&model.beam_spec_with_string(string.as_ref().map(|c| c.fidelity))?)?,
+    };
+    let arm = match fidelity {
+        Some(fidelity) => Choice::set(fidelity, "set on the command line"),
+        None => fidelity_for(model, compiled.beam(), compiled.modes())?,
+    };
+    let model = compiler.arm(&compiled, arm.fidelity, &model.arm_options())?;
+    Ok(CompiledArm { string, arm, model })
+}
+
 /// A held string's bending modes count when they lie below this multiple of the arm's first
 /// frequency, whatever the scene's band: a string mode that close to the arm's takes part in its
 /// motion as a tuned mass does, and at 1 % damping a little of the drive's spectrum rings it
@@ -210,25 +246,25 @@ pub const STRING_MODE_MARGIN: f64 = 5.0;
 /// impact on the arm reaches the string only through its hands). A friction-clamped string is
 /// rigid. Rigid without a string.
 pub fn string_fidelity(model: &Model) -> Result<Choice, BeamError> {
-    Ok(string_fidelity_and_beam(model)?.0)
+    Ok(string_fidelity_and_beam(model, &Compiler::new())?.0)
 }
 
-/// A string's beam with the arm's modes, built for a choice and reused by the run.
-pub type BuiltBeam = (BeamModel, ModalBasis);
-
-/// [`string_fidelity`], with the beam (and the arm's modes) `auto` built to choose, ready for a
-/// run where it chose a flexible string (`None` where it did not build one or chose rigid).
-pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBeam>), BeamError> {
+/// [`string_fidelity`], with the beam (and the arm's modes) `auto` compiled to choose, ready for
+/// a run where it chose a flexible string (`None` where it did not compile one or chose rigid).
+pub fn string_fidelity_and_beam(
+    model: &Model,
+    compiler: &Compiler,
+) -> Result<(Choice, Option<CompiledBeam>), BeamError> {
     let choice = |fidelity, reason: &str| Ok((Choice::set(fidelity, reason), None));
     let Some(held) = model.payload.string() else { return choice(Fidelity::Rigid, "no string") };
     if let Some(fidelity) = held.model {
         return choice(fidelity, "set in the scenario");
     }
-    let mut beam = BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
-    let arm_modes = beam.modes()?;
+    let compiled = compiler.beam(&model.beam_spec_with_string(Some(Fidelity::Modal { modes: 1 }))?)?;
+    let (beam, arm_modes) = (compiled.beam(), compiled.modes());
     let string_hz = beam.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default();
     let arm_first_hz = arm_modes.frequencies_hz().first().copied().unwrap_or(0.0);
-    let band_hz = excited_band(model, &beam, &arm_modes)?.band_hz;
+    let band_hz = excited_band(model, beam, arm_modes)?.band_hz;
     let limit_hz = band_hz.max(STRING_MODE_MARGIN * arm_first_hz);
     let k = string_hz.iter().take_while(|f| **f <= limit_hz).count();
     let first = string_hz.first().copied().unwrap_or(f64::INFINITY);
@@ -237,7 +273,7 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
          the scene's band {band_hz:.0} Hz"
     );
     let expected = Some(ExpectedError {
-        fraction: budget::string_truncation(&beam, arm_first_hz, k),
+        fraction: budget::string_truncation(beam, arm_first_hz, k),
         basis: "the arm's headline quantities: the string's mass in the modes left out, amplified at the arm's \
                 first frequency (string truncation estimate)"
             .into(),
@@ -246,11 +282,10 @@ pub fn string_fidelity_and_beam(model: &Model) -> Result<(Choice, Option<BuiltBe
     if k == 0 {
         return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid"), expected }, None));
     }
-    // The beam built for the choice is the run's, keeping k of the string's modes.
-    beam.keep_member_modes(Some(k));
+    // The beam compiled for the choice is the run's, keeping k of the string's modes.
     let fidelity = Fidelity::Modal { modes: k };
     let reason = format!("{why}: {k} string mode(s) below {limit_hz:.0} Hz");
-    Ok((Choice { fidelity, reason, expected }, Some((beam, arm_modes))))
+    Ok((Choice { fidelity, reason, expected }, Some(compiler.keeping_member_modes(&compiled, k))))
 }
 
 /// Clamped modes of the model against which an actuated arm's coupled frequencies are judged.

@@ -1,6 +1,7 @@
 //! The code's seams, kept: data flows one way (scenario file → model → step loop), so the
 //! physics modules never import the scenario file's module; no two source files import each
-//! other, directly or round a cycle; no source file grows past 700 lines.
+//! other, directly or round a cycle; no source file grows past 700 lines; the run takes its arm
+//! compiled.
 //!
 //! The import graph is read from the source text: an edge for every `crate::m` path (to the
 //! top-level module `m`) and every `super::f` path from a file in a module's folder (to its
@@ -191,6 +192,17 @@ fn nothing_dispatches_on_a_name_string_or_downcasts() {
         for pattern in forbidden {
             assert!(!code.contains(pattern), "{}: `{pattern}`", file.display());
         }
+    }
+}
+
+/// The run takes its arm compiled (`select::compile_arm` through a `compile::Compiler`, which
+/// keeps what a sweep's runs share): the step loop's module builds no beam and solves no
+/// eigenproblem of its own.
+#[test]
+fn the_run_takes_its_arm_compiled() {
+    let code = code_of(&std::fs::read_to_string(src().join("run.rs")).unwrap());
+    for pattern in ["BeamModel::new", ".modes()", "with_modes(", "symmetric_eigen", "ArmModel::new"] {
+        assert!(!code.contains(pattern), "src/run.rs: `{pattern}`");
     }
 }
 

@@ -1,6 +1,7 @@
 //! Time-stepping the arm alone (no contact) and reading its outputs.
 
 use std::borrow::Cow;
+use std::sync::Arc;
 
 use nalgebra::DVector;
 
@@ -56,8 +57,8 @@ pub struct ArmSample {
 
 /// The arm, its drive and an integrator, stepped in time.
 pub struct ArmSimulation {
-    /// The model.
-    pub arm: ArmModel,
+    /// The model, compiled (shared with the runs that share it).
+    pub arm: Arc<ArmModel>,
     /// The hub drive.
     pub drive: HubDrive,
     /// External load held over the next step.
@@ -80,7 +81,8 @@ impl ArmSimulation {
     /// (a lift begins from the arm sagging on its hub, not from an undeformed arm dropped).
     /// An actuated hub starts at rest at its reference's start angle (less the drive's static
     /// lag), held there by the actuator ([`ActuatorPlant::holding`]).
-    pub fn new(arm: ArmModel, drive: HubDrive, integrator: IntegratorKind) -> Result<Self, ArmError> {
+    pub fn new(arm: impl Into<Arc<ArmModel>>, drive: HubDrive, integrator: IntegratorKind) -> Result<Self, ArmError> {
+        let arm = arm.into();
         let n = arm.elastic_dofs();
         let start_rad = match drive {
             HubDrive::Prescribed(ref p) => p.sample(0.0).angle_rad,
@@ -92,7 +94,11 @@ impl ArmSimulation {
     }
 
     /// Starts an actuated hub in static equilibrium, its actuator holding it.
-    fn held_by(arm: ArmModel, mut plant: Box<ActuatorPlant>, integrator: IntegratorKind) -> Result<Self, ArmError> {
+    fn held_by(
+        arm: Arc<ArmModel>,
+        mut plant: Box<ActuatorPlant>,
+        integrator: IntegratorKind,
+    ) -> Result<Self, ArmError> {
         if let Actuator::Hydraulic(h) = &plant.actuator {
             plant.arm_pin = Some(arm.pin_coupling(h.cylinder.arm_pin_m)?);
         }
@@ -108,12 +114,13 @@ impl ArmSimulation {
 
     /// Starts at t = 0 from elastic coordinates `q0` and rates `qd0`.
     pub fn with_initial(
-        arm: ArmModel,
+        arm: impl Into<Arc<ArmModel>>,
         drive: HubDrive,
         integrator: IntegratorKind,
         q0: DVector<f64>,
         qd0: DVector<f64>,
     ) -> Result<Self, ArmError> {
+        let arm = arm.into();
         let n = arm.elastic_dofs();
         if q0.len() != n || qd0.len() != n {
             return Err(ArmError::InvalidParameter {
@@ -138,7 +145,7 @@ impl ArmSimulation {
 
     /// Starts at t = 0 from the integrator's coordinates `x` and rates `v`.
     fn from_coordinates(
-        arm: ArmModel,
+        arm: Arc<ArmModel>,
         drive: HubDrive,
         integrator: IntegratorKind,
         x: DVector<f64>,

@@ -16,12 +16,13 @@ use rayon::prelude::*;
 use serde::Serialize;
 use thiserror::Error;
 
+use crate::compile::Compiler;
 use crate::envelope::cases::{MethodChoice, Sampling};
 use crate::envelope::dist::Spread;
 use crate::envelope::sensitivity::quantile;
 use crate::envelope::{EnvelopeError, cases::check_spreads};
 use crate::robot::Robot;
-use crate::run::run;
+use crate::run::{RunOptions, run_reusing};
 use crate::scenario::{Scenario, ScenarioError};
 use crate::sweep::plan::{base_document, get_number, not_a_number, set_key, spec_of};
 use crate::sweep::row::Row;
@@ -233,11 +234,12 @@ impl Evaluator {
                 })
                 .collect::<Result<_, String>>()
         })?;
+        let compiler = Compiler::new();
         let results: Vec<Option<Row>> = self.pool.install(|| {
             scenarios
                 .par_iter()
                 .map(|s| {
-                    let (summary, _) = run(&s.model, None).ok()?;
+                    let (summary, _) = run_reusing(&s.model, &RunOptions::default(), &compiler).ok()?;
                     Row::read(serde_json::to_string(&summary).expect("a summary serialises"), &["impacts"]).ok()
                 })
                 .collect()

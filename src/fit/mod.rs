@@ -24,8 +24,9 @@ use serde::Serialize;
 
 use crate::arm::Fidelity;
 use crate::compare::SignalDef;
+use crate::compile::Compiler;
 use crate::robot::Robot;
-use crate::run::{RunSummary, Series, run};
+use crate::run::{RunOptions, RunSummary, Series, run_reusing};
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use crate::scene::SceneError;
 use crate::sweep::plan::{explicit_damping_ratios, get_number, not_a_number, set_key};
@@ -134,6 +135,8 @@ pub struct Problem {
     defs: Vec<SignalDef>,
     /// The parameters, in `--params` order.
     pub parameters: Vec<Parameter>,
+    /// The beams and arms compiled so far: a fit's runs vary a few keys, which seldom touch them.
+    compiler: std::sync::Arc<Compiler>,
 }
 
 impl Problem {
@@ -159,7 +162,8 @@ impl Problem {
             .collect::<Result<Vec<_>, FitError>>()?;
         let defs = crate::compare::signal_defs(&scenario.model);
         let robot = scenario.model.robot.clone();
-        Ok(Problem { path: path.clone(), document, robot, settings, defs, parameters })
+        let compiler = std::sync::Arc::new(Compiler::new());
+        Ok(Problem { path: path.clone(), document, robot, settings, defs, parameters, compiler })
     }
 
     /// The step the runs take, s.
@@ -210,7 +214,8 @@ impl Problem {
         if let Some(step_s) = self.settings.step_s {
             model.time.step_s = step_s;
         }
-        run(&model, self.settings.fidelity)
+        let options = RunOptions { fidelity: self.settings.fidelity, ..RunOptions::default() };
+        run_reusing(&model, &options, &self.compiler)
             .map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
     }
 }

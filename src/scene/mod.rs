@@ -104,7 +104,7 @@ impl Scene {
     }
 
     /// Builds the scene of a model around an arm model already reduced for it.
-    pub fn with_arm(model: &Model, arm_model: ArmModel) -> Result<Self, SceneError> {
+    pub fn with_arm(model: &Model, arm_model: impl Into<std::sync::Arc<ArmModel>>) -> Result<Self, SceneError> {
         let arm = ArmSimulation::new(arm_model, model.hub_drive(), model.integrator)?;
         let friction = model.payload.string().and_then(|held| held.friction_clamp().map(|_| held));
         if let Some(held) = friction.filter(|h| h.grips.len() > 1) {

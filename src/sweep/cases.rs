@@ -13,7 +13,8 @@ use serde::Serialize;
 use super::plan::{Case, Plan};
 use super::shard::Shard;
 use super::{SweepError, io_error, write_atomic};
-use crate::run::{RunSummary, run};
+use crate::compile::Compiler;
+use crate::run::{RunOptions, RunSummary, run_reusing};
 use crate::scenario::Scenario;
 use crate::scene::SceneError;
 
@@ -104,9 +105,11 @@ pub fn run_cases(
     let queue = longest_first(todo, scenarios);
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<SweepError>> = Mutex::new(None);
+    // The cases vary a few keys: most share their beam and reduced arm.
+    let compiler = Compiler::new();
     pool.broadcast(|_| {
         while let Some(&i) = queue.get(next.fetch_add(1, Ordering::Relaxed)) {
-            match run_case(plan, &plan.cases[i], &scenarios[i], dir) {
+            match run_case(plan, &plan.cases[i], &scenarios[i], dir, &compiler) {
                 Ok(()) => done(&plan.cases[i]),
                 Err(e) => {
                     failure.lock().expect("no worker panics holding it").get_or_insert(e);
@@ -126,10 +129,10 @@ fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
     queue
 }
 
-fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path) -> Result<(), SweepError> {
+fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path, compiler: &Compiler) -> Result<(), SweepError> {
     let file =
         |summary, diverged| CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary, diverged };
-    let json = match run(&scenario.model, None) {
+    let json = match run_reusing(&scenario.model, &RunOptions::default(), compiler) {
         Ok((summary, _)) => serde_json::to_string_pretty(&file(Some(&summary), None)),
         Err(SceneError::Diverged { t_s, what, advice }) => {
             serde_json::to_string_pretty(&file(None, Some(Diverged { t_s, what: &what, advice: &advice })))

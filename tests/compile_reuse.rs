@@ -1,0 +1,51 @@
+//! Runs that share a `Compiler` take the beam and the reduced arm an earlier run compiled where
+//! their keys do not touch them, compile their own where they do, and give the numbers a run
+//! compiling everything itself gives, to the bit.
+
+use std::path::Path;
+
+use pipearm::compile::{Compilations, Compiler};
+use pipearm::model::Model;
+use pipearm::run::{RunOptions, RunSummary, run_reusing, run_with};
+use pipearm::scenario::Scenario;
+
+fn default_model() -> Model {
+    Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap().model
+}
+
+/// Everything a run reports but its timing, as JSON.
+fn numbers(summary: &RunSummary) -> serde_json::Value {
+    let mut json = serde_json::to_value(summary).unwrap();
+    json.as_object_mut().unwrap().retain(|key, _| !key.contains("wall"));
+    json
+}
+
+#[test]
+fn runs_share_what_their_keys_leave_alone_and_match_runs_that_compile_it_themselves() {
+    let base = default_model();
+    let mut wider_gap = base.clone();
+    wider_gap.dampeners[0].gap_m *= 2.0;
+    let mut damped = base.clone();
+    damped.robot.arm.damping_ratios = vec![0.03];
+    let mut heavier_gripper = base.clone();
+    heavier_gripper.robot.carried[0].mass_kg *= 1.5;
+    let options = RunOptions::default();
+    let compiler = Compiler::new();
+    let mut expected = Compilations { beams: 0, arms: 0 };
+    // The default holds its string flexibly: auto compiles the beam with a one-mode string to
+    // choose, then that beam keeping the modes it chose; then the reduced arm.
+    for (name, model, new_beams, new_arms) in [
+        ("default", &base, 2, 1),
+        ("the pad's gap doubled (the pad is no part of the beam)", &wider_gap, 0, 0),
+        ("damping 3 % (the beam's modes stand; the arm's damping does not)", &damped, 0, 1),
+        ("the gripper 50 % heavier (a mass on the beam)", &heavier_gripper, 2, 1),
+        ("default again", &base, 0, 0),
+    ] {
+        let (reusing, _) = run_reusing(model, &options, &compiler).unwrap();
+        let (alone, _) = run_with(model, &options).unwrap();
+        assert_eq!(numbers(&reusing), numbers(&alone), "{name}: the numbers moved");
+        expected.beams += new_beams;
+        expected.arms += new_arms;
+        assert_eq!(compiler.compilations(), expected, "{name}");
+    }
+}
