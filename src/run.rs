@@ -227,8 +227,8 @@ pub struct RunSummary {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub string: Option<crate::sensor::string::StringSummary>,
     /// ω_max·dt of the highest mode the model keeps (with an actuator: of the fastest pole of
-    /// the arm and its drive, linearised at the run's end): an explicit integrator is stable only
-    /// below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
+    /// the arm and its drive held at rest at the end of the drive's path): an explicit integrator
+    /// is stable only below its limit (2 for symplectic Euler, 2√2 for RK4; explicit Euler never).
     pub highest_omega_dt: f64,
     /// The integrator's stability limit on ω·dt (`None`: unconditionally stable; 0: none).
     pub stability_limit_omega_dt: Option<f64>,
@@ -331,7 +331,7 @@ fn simulate(
     series: &mut Series,
     compiler: &Compiler,
 ) -> Result<RunSummary, SceneError> {
-    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm } =
+    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, fastest_rad_s } =
         crate::select::compile_arm(model, options.fidelity, compiler)?;
     let fidelity = choice.fidelity;
     let mut scene = Scene::with_arm(model, arm)?;
@@ -402,7 +402,7 @@ fn simulate(
     stress.iter_mut().for_each(|p| p.hand_over_rest(&mut series.stress));
     let summarized = stepped.and_then(|steps| {
         let wall_time_s = started.elapsed().as_secs_f64();
-        let mut summary = summarize(model, &scene, series, &trackers, fidelity, steps, wall_time_s)?;
+        let mut summary = summarize(model, &scene, series, &trackers, fastest_rad_s, steps, wall_time_s)?;
         (summary.model_reason, summary.model_expected_error) = (choice.reason, choice.expected);
         if let Some(choice) = string_choice {
             if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
@@ -494,17 +494,6 @@ impl Keeper {
             series.frames.push(scene.frame());
         }
     }
-}
-
-/// The fastest motion the model keeps, rad/s: its highest mode under a prescribed hub; the
-/// fastest pole of the arm and its drive linearised at the current state under an actuator (the
-/// clamped modes understate it once the hub is free).
-fn fastest_rad_s(scene: &Scene) -> f64 {
-    let clamped = scene.arm.arm.highest_omega_rad_s;
-    if scene.arm.drive.plant().is_none() {
-        return clamped;
-    }
-    scene.arm.linear_poles().map_or(clamped, |poles| poles.iter().map(|p| p.norm()).fold(clamped, f64::max))
 }
 
 /// Total mass × g × twice the reach (arm plus string): the most gravity could release, J.
@@ -603,7 +592,7 @@ fn summarize(
     scene: &Scene,
     series: &Series,
     trackers: &[ImpactTracker],
-    fidelity: Fidelity,
+    fastest_rad_s: f64,
     steps: usize,
     wall_time_s: f64,
 ) -> Result<RunSummary, SceneError> {
@@ -650,7 +639,7 @@ fn summarize(
         scenario: model.name.clone(),
         robot: model.robot.name.clone(),
         payload_kg,
-        model: fidelity.to_string(),
+        model: arm.fidelity.to_string(),
         model_reason: String::new(),
         model_expected_error: None,
         integrator: model.integrator.to_string(),
@@ -679,7 +668,7 @@ fn summarize(
         ),
         residual: residual_of_run(&deflection, hub_rate.as_deref(), model.drive_end_s()),
         pairs,
-        highest_omega_dt: fastest_rad_s(scene) * model.time.step_s,
+        highest_omega_dt: fastest_rad_s * model.time.step_s,
         stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),
         sensors: series.sensors.iter().map(|s| SensorSummary::of(s, &series.t_s)).collect(),
         string_slip: scene.grip().map(|g| SlipSummary {

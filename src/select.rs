@@ -207,6 +207,10 @@ pub struct CompiledArm {
     pub arm: Choice,
     /// The arm reduced to it.
     pub model: Arc<ArmModel>,
+    /// The fastest motion it keeps, rad/s: its highest mode under a prescribed hub; under an
+    /// actuator the fastest pole of the arm and its drive held at rest at the end of the drive's
+    /// path, if faster (the clamped modes understate it once the hub is free).
+    pub fastest_rad_s: f64,
 }
 
 /// Chooses the string's fidelity and the arm's (`fidelity` if given) and reduces the arm to it,
@@ -228,8 +232,20 @@ pub fn compile_arm(model: &Model, fidelity: Option<Fidelity>, compiler: &Compile
         Some(fidelity) => Choice::set(fidelity, "set on the command line"),
         None => fidelity_for(model, compiled.beam(), compiled.modes())?,
     };
-    let model = compiler.arm(&compiled, arm.fidelity, &model.arm_options())?;
-    Ok(CompiledArm { string, arm, model })
+    let reduced = compiler.arm(&compiled, arm.fidelity, &model.arm_options())?;
+    let fastest_rad_s = fastest_rad_s(model, &reduced);
+    Ok(CompiledArm { string, arm, model: reduced, fastest_rad_s })
+}
+
+/// [`CompiledArm::fastest_rad_s`] of `arm` in `model`.
+fn fastest_rad_s(model: &Model, arm: &Arc<ArmModel>) -> f64 {
+    let clamped = arm.highest_omega_rad_s;
+    if model.drive.actuator == crate::actuator::Actuator::Ideal {
+        return clamped;
+    }
+    let drive = model.hub_drive_held_at(model.drive.motion.end_rad());
+    let poles = ArmSimulation::new(arm.clone(), drive, model.integrator).ok().and_then(|sim| sim.linear_poles().ok());
+    poles.map_or(clamped, |poles| poles.iter().map(|p| p.norm()).fold(clamped, f64::max))
 }
 
 /// A held string's bending modes count when they lie below this multiple of the arm's first
