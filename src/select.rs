@@ -243,9 +243,15 @@ fn fastest_rad_s(model: &Model, arm: &Arc<ArmModel>) -> f64 {
     if model.drive.actuator == crate::actuator::Actuator::Ideal {
         return clamped;
     }
+    poles_held_at_end(model, arm.clone())
+        .map_or(clamped, |poles| poles.iter().map(|p| p.norm()).fold(clamped, f64::max))
+}
+
+/// The poles (rad/s) of `arm` with the model's drive, held at rest at the end of the drive's path
+/// (where it meets its stops) and linearised there; `None` if it cannot be held or linearised.
+fn poles_held_at_end(model: &Model, arm: Arc<ArmModel>) -> Option<Vec<Complex<f64>>> {
     let drive = model.hub_drive_held_at(model.drive.motion.end_rad());
-    let poles = ArmSimulation::new(arm.clone(), drive, model.integrator).ok().and_then(|sim| sim.linear_poles().ok());
-    poles.map_or(clamped, |poles| poles.iter().map(|p| p.norm()).fold(clamped, f64::max))
+    ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()
 }
 
 /// A held string's bending modes count when they lie below this multiple of the arm's first
@@ -342,8 +348,7 @@ fn oscillating_poles_at_end(
 ) -> Option<Vec<Complex<f64>>> {
     let fidelity = Fidelity::Modal { modes: k };
     let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
-    let drive = model.hub_drive_held_at(model.drive.motion.end_rad());
-    let poles = ArmSimulation::new(arm, drive, model.integrator).ok()?.linear_poles().ok()?;
+    let poles = poles_held_at_end(model, Arc::new(arm))?;
     let mut oscillating: Vec<Complex<f64>> = poles.into_iter().filter(|p| p.im > 0.0).collect();
     oscillating.sort_by(|a, b| a.im.total_cmp(&b.im));
     Some(oscillating)
