@@ -15,9 +15,9 @@
 //! pad: an impact's peak force goes as the square root of the contact's stiffness
 //! 1 / (1/k + f), so it is off by about ½ Δf / (1/k + f).
 //!
-//! The sums reuse the modes the run solves anyway: a few dot products per mode, and one Cholesky
-//! factor of the modes' stiffness per load at its hub rate (`SpinningStatics`;
-//! docs/fidelity.md measures it against a run).
+//! The sums reuse the modes the run solves anyway: a few dot products per mode, and for the loads
+//! judged at a hub rate one projection of the spinning arm's extra stiffness onto the modes and
+//! one Cholesky factor each (`SpinningStatics`; docs/fidelity.md measures it against a run).
 
 use crate::actuator::Actuator;
 use crate::beam::{BeamError, BeamModel, ModalBasis};
@@ -77,10 +77,11 @@ impl TruncationBound {
             _ => held_at_the_hub(model, beam),
         };
         let tip_modal = modes.shapes.tr_mul(&tip);
+        let spin_stiffness = loads.iter().any(|l| l.rate_rad_s != 0.0).then(|| spin_stiffness(model, beam, modes));
         let tips: Vec<(String, Vec<f64>)> = loads
             .iter()
             .map(|load| {
-                let spinning = SpinningStatics::new(model, beam, modes, load.rate_rad_s);
+                let spinning = SpinningStatics::new(modes, spin_stiffness.as_ref(), load.rate_rad_s);
                 (load.name.clone(), tails(&spinning.terms(&tip_modal, &modes.shapes.tr_mul(&load.vector))))
             })
             .collect();
@@ -173,19 +174,18 @@ struct SpinningStatics {
 }
 
 impl SpinningStatics {
-    fn new(model: &Model, beam: &BeamModel, modes: &ModalBasis, spin: f64) -> Self {
-        let stiffening = if model.physics.geometric_stiffening { 1.0 } else { 0.0 };
-        let spun =
-            &beam.stiffness + spin * spin * (stiffening * &beam.centrifugal_stiffness - &beam.translational_mass);
-        let phi = &modes.shapes;
-        let at_rest = || {
-            nalgebra::DMatrix::from_diagonal(&nalgebra::DVector::from_iterator(
-                modes.len(),
-                modes.omegas_rad_s.iter().copied(),
-            ))
-        };
+    /// At hub rate `spin`, with `spin_stiffness` the modes' Φᵀ (K_c − M_tr) Φ (needed unless
+    /// `spin` is 0): Φᵀ K_Ω Φ = diag(ωᵢ²) + Ω² Φᵀ (K_c − M_tr) Φ, the modes being mass-normalised.
+    fn new(modes: &ModalBasis, spin_stiffness: Option<&nalgebra::DMatrix<f64>>, spin: f64) -> Self {
+        let omegas = nalgebra::DVector::from_iterator(modes.len(), modes.omegas_rad_s.iter().copied());
+        let at_rest = || nalgebra::DMatrix::from_diagonal(&omegas);
+        let Some(spun) = spin_stiffness.filter(|_| spin != 0.0) else { return SpinningStatics { factor: at_rest() } };
+        let mut stiffness = spin * spin * spun;
+        for (i, w) in omegas.iter().enumerate() {
+            stiffness[(i, i)] += w * w;
+        }
         // An arm that buckles at that rate (no stiffening) is judged at rest.
-        let factor = (phi.transpose() * spun * phi).cholesky().map_or_else(at_rest, |c| c.l());
+        let factor = stiffness.cholesky().map_or_else(at_rest, |c| c.l());
         SpinningStatics { factor }
     }
 
@@ -194,6 +194,14 @@ impl SpinningStatics {
         let solve = |v: &nalgebra::DVector<f64>| self.factor.solve_lower_triangular(v).unwrap_or_else(|| v * 0.0);
         solve(r).component_mul(&solve(b)).iter().copied().collect()
     }
+}
+
+/// The modes' share of a spinning arm's stiffness per (rad/s)², Φᵀ (K_c − M_tr) Φ (K_c where
+/// the scene keeps the centrifugal stiffening): one projection for every load and rate.
+fn spin_stiffness(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> nalgebra::DMatrix<f64> {
+    let stiffening = if model.physics.geometric_stiffening { 1.0 } else { 0.0 };
+    let phi = &modes.shapes;
+    phi.transpose() * (stiffening * &beam.centrifugal_stiffness - &beam.translational_mass) * phi
 }
 
 /// The scene's loads on an arm its hub holds (an ideal drive or a servo), at the drive's start
