@@ -19,7 +19,7 @@
 
 use thiserror::Error;
 
-use crate::actuator::{Actuator, Cylinder, HydraulicCircuit};
+use crate::actuator::{Actuator, Cylinders, HydraulicCircuit};
 use crate::beam::{BeamError, BeamSpec};
 use crate::model::{Model, Payload};
 use crate::robot::{Mount, Robot, Shape};
@@ -85,8 +85,9 @@ pub enum LiftLimit {
     Effort { torque_n_m: f64 },
     /// The servo's motor torque limit through its gear, N·m at the hub.
     Servo { torque_n_m: f64 },
-    /// The cylinder at the circuit's relief pressure.
-    Cylinder { cylinder: Cylinder, relief_pressure_pa: f64, tank_pressure_pa: f64 },
+    /// The cylinders at the circuit's relief pressure (every cap side at relief pushing, every
+    /// rod side pulling, the other side at tank).
+    Cylinder { cylinders: Cylinders, relief_pressure_pa: f64, tank_pressure_pa: f64 },
 }
 
 impl LiftLimit {
@@ -95,9 +96,10 @@ impl LiftLimit {
         match self {
             LiftLimit::Effort { torque_n_m } => format!("joint effort {:.0} kN·m", torque_n_m / 1e3),
             LiftLimit::Servo { torque_n_m } => format!("servo {:.0} kN·m", torque_n_m / 1e3),
-            LiftLimit::Cylinder { relief_pressure_pa, .. } => {
-                format!("cylinder at {:.1} MPa relief", relief_pressure_pa / 1e6)
-            }
+            LiftLimit::Cylinder { cylinders, relief_pressure_pa, .. } => match cylinders.each.len() {
+                1 => format!("cylinder at {:.1} MPa relief", relief_pressure_pa / 1e6),
+                n => format!("{n} cylinders at {:.1} MPa relief", relief_pressure_pa / 1e6),
+            },
         }
     }
 
@@ -106,12 +108,12 @@ impl LiftLimit {
     pub fn torque_n_m(&self, angle_rad: f64) -> (f64, f64) {
         match self {
             LiftLimit::Effort { torque_n_m } | LiftLimit::Servo { torque_n_m } => (*torque_n_m, *torque_n_m),
-            LiftLimit::Cylinder { cylinder, relief_pressure_pa, tank_pressure_pa } => {
-                let (_, arm) = cylinder.length_and_arm(angle_rad);
-                let (a_cap, a_rod) = (cylinder.cap_area_m2(), cylinder.rod_area_m2());
+            LiftLimit::Cylinder { cylinders, relief_pressure_pa, tank_pressure_pa } => {
+                // Areas times moment arms, summed: the hub torque per pascal on each side.
+                let (a_cap, a_rod) = cylinders.moment_areas_m3(angle_rad);
                 let push = relief_pressure_pa * a_cap - tank_pressure_pa * a_rod;
                 let pull = relief_pressure_pa * a_rod - tank_pressure_pa * a_cap;
-                ((push * arm).max(-pull * arm), (pull * arm).max(-push * arm))
+                (push.max(-pull), pull.max(-push))
             }
         }
     }
@@ -126,14 +128,14 @@ pub fn lift_limits(model: &Model) -> Vec<LiftLimit> {
         limits.push(LiftLimit::Servo { torque_n_m: servo.hub_torque_limit_n_m() });
     }
     if let Actuator::Hydraulic(drive) = &model.drive.actuator {
-        limits.push(cylinder_limit(drive.cylinder, &drive.circuit));
+        limits.push(cylinder_limit(&drive.cylinders, &drive.circuit));
     }
     limits
 }
 
-fn cylinder_limit(cylinder: Cylinder, circuit: &HydraulicCircuit) -> LiftLimit {
+fn cylinder_limit(cylinders: &Cylinders, circuit: &HydraulicCircuit) -> LiftLimit {
     LiftLimit::Cylinder {
-        cylinder,
+        cylinders: cylinders.clone(),
         relief_pressure_pa: circuit.relief_pressure_pa,
         tank_pressure_pa: circuit.tank_pressure_pa,
     }
@@ -144,7 +146,7 @@ pub fn scene_limit(model: &Model) -> LiftLimit {
     match &model.drive.actuator {
         Actuator::Ideal => LiftLimit::Effort { torque_n_m: model.robot.lift.effort_n_m },
         Actuator::Servo(servo) => LiftLimit::Servo { torque_n_m: servo.machine.hub_torque_limit_n_m() },
-        Actuator::Hydraulic(drive) => cylinder_limit(drive.cylinder, &drive.circuit),
+        Actuator::Hydraulic(drive) => cylinder_limit(&drive.cylinders, &drive.circuit),
     }
 }
 

@@ -26,7 +26,7 @@
 //! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |
 //! | `stress.worst[Pa]` | σ at the section and fibre of the run's peak stress ([`crate::stress`]) |
 //! | `pivot.force.x[N]`, `pivot.force.y[N]` | the pivot's force on the arm, world |
-//! | `cylinder_pin.force.x[N]`, `cylinder_pin.force.y[N]` | the rod's force on the arm's pin, world (with a cylinder) |
+//! | `cylinder_pin.force.x[N]`, `cylinder_pin.force.y[N]` | the rod's force on the arm's pin, world (with a cylinder; of several, `cylinder_pin.<k>.force.x[N]`, k from 1 in the URDF's order) |
 //! | `grip.<hand>.force.axial[N]`, `.force.transverse[N]`, `.moment[N*m]` | each hand's grip on the string, arm frame (a rigid string's hands read as pins) |
 //! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
 //! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
@@ -199,9 +199,11 @@ fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<I
     for (a, axis) in ["x", "y"].into_iter().enumerate() {
         push(format!("pivot.force.{axis}[N]"), &mut (0..steps).map(|k| world(k, stress.pivot_index)[a]));
     }
-    if let Some(at) = stress.cylinder_index {
+    let count = stress.cylinder_indices.len();
+    for (i, at) in stress.cylinder_indices.iter().enumerate() {
+        let number = crate::actuator::cylinder_number(i, count).map_or(String::new(), |n| format!(".{n}"));
         for (a, axis) in ["x", "y"].into_iter().enumerate() {
-            push(format!("cylinder_pin.force.{axis}[N]"), &mut (0..steps).map(|k| value(k, at + a)));
+            push(format!("cylinder_pin{number}.force.{axis}[N]"), &mut (0..steps).map(|k| value(k, at + a)));
         }
     }
     for (hand, at) in &stress.hands {

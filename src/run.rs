@@ -38,6 +38,9 @@ pub struct Series {
     pub drive_torque_n_m: Vec<f64>,
     /// The actuator's outputs per step (empty under an ideal drive).
     pub actuator: Vec<ActuatorOutputs>,
+    /// The actuator's signals as it declares them (names, units, plots), read by the recording
+    /// and by `compare`.
+    pub actuator_signals: Vec<crate::compare::SignalDef>,
     /// Contact force per pad (outer index: pad), N.
     pub pad_force_n: Vec<Vec<f64>>,
     /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
@@ -344,6 +347,7 @@ fn simulate(
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
+    series.actuator_signals = crate::compare::actuator_signal_defs(&model.drive.actuator);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];
@@ -539,7 +543,7 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     series.tip_deflection_m.push(s.tip_deflection_hub_m);
     series.tip_velocity_m_s.push(s.tip_velocity_hub_m_s);
     series.drive_torque_n_m.push(s.drive_torque_n_m);
-    series.actuator.extend(s.actuator);
+    series.actuator.extend(s.actuator.clone());
     series.energies_j.push([s.energies.kinetic_j, s.energies.strain_j, s.energies.gravity_j]);
     if scene.arm.arm.fidelity != Fidelity::Fe {
         series.modal_dofs = s.q.len();

@@ -7,8 +7,8 @@ mod common;
 
 use common::{ACTUATORS, model, rel, uniform, validated_rel};
 use pipearm::actuator::{
-    Actuator, ActuatorPlant, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, ServoMachine,
-    Valve,
+    Actuator, ActuatorPlant, ControllerGains, Cylinder, Cylinders, HydraulicCircuit, HydraulicDrive, ServoDrive,
+    ServoMachine, Valve,
 };
 use pipearm::arm::{ArmModel, ArmOptions, ArmSimulation, Fidelity, HubDrive};
 use pipearm::drive::{MotionProfile, TrapezoidLimit};
@@ -56,7 +56,11 @@ fn circuit(relief_pressure_pa: f64) -> HydraulicCircuit {
 }
 
 fn hydraulic(controller: ControllerGains, relief_pressure_pa: f64) -> Actuator {
-    Actuator::Hydraulic(HydraulicDrive { cylinder: cylinder(), circuit: circuit(relief_pressure_pa), controller })
+    Actuator::Hydraulic(HydraulicDrive {
+        cylinders: Cylinders::one(cylinder()),
+        circuit: circuit(relief_pressure_pa),
+        controller,
+    })
 }
 
 fn simulate(arm: ArmModel, actuator: Actuator, reference: MotionProfile, step_s: f64) -> ArmSimulation {
@@ -255,7 +259,7 @@ fn peak_cap_pressure_pa(relief_pressure_pa: f64, rate_rad_s: f64) -> f64 {
     let mut peak = 0.0_f64;
     for _ in 0..1000 {
         sim.step(h).unwrap();
-        peak = peak.max(sim.sample().actuator.unwrap().pressures_pa.unwrap()[0]);
+        peak = peak.max(sim.sample().actuator.unwrap().cylinders[0].pressures_pa[0]);
     }
     peak
 }

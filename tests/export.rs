@@ -85,7 +85,7 @@ fn sign_off_columns(series: &Series, columns: &mut Vec<(String, Vec<f64>)>) {
     };
     columns.push(("pivot.force.x[N]".into(), (0..steps).map(|k| world(k, 0)).collect()));
     columns.push(("pivot.force.y[N]".into(), (0..steps).map(|k| world(k, 1)).collect()));
-    if let Some(at) = stress.cylinder_index {
+    if let [at] = stress.cylinder_indices[..] {
         columns.push(("cylinder_pin.force.x[N]".into(), (0..steps).map(|k| value(k, at)).collect()));
         columns.push(("cylinder_pin.force.y[N]".into(), (0..steps).map(|k| value(k, at + 1)).collect()));
     }

@@ -26,12 +26,12 @@ fn kept_modes_and_residual_give_the_cantilevers_static_flexibility_at_the_pin() 
     for modes in [1, 2, 4, 8, 20] {
         let arm =
             ArmModel::new(model(uniform(length, ei, 30.0, 8)), Fidelity::Modal { modes }, options.clone()).unwrap();
-        let pin = arm.pin_coupling([a, y]).unwrap();
+        let pin = arm.pin_couplings(&[[a, y]]).unwrap();
         for j in 0..2 {
             // The kept modes' static response to a unit force along j: K_n q = R_nᵀ e_j.
-            let q = arm.static_deflection_under(0.0, &pin.rows[j]).unwrap();
+            let q = arm.static_deflection_under(0.0, &pin.rows[0][j]).unwrap();
             for i in 0..2 {
-                let total = pin.rows[i].dot(&q) + pin.residual_flexibility_m_per_n[i][j];
+                let total = pin.rows[0][i].dot(&q) + pin.residual_flexibility_m_per_n[(i, j)];
                 worst = worst.max((total - expected[i][j]).abs() / expected[1][1]);
                 assert!(
                     (total - expected[i][j]).abs() < 1e-9 * expected[1][1],
@@ -55,10 +55,36 @@ fn kept_modes_and_residual_give_the_cantilevers_static_flexibility_at_the_pin() 
 }
 
 #[test]
+fn kept_modes_and_residual_give_the_cross_flexibility_between_two_pins() {
+    // Two cylinders' pins on the axis of the same cantilever, at a = 1.5 m and b = 3 m: a force
+    // on one moves the other (beam theory, a < b): G_uu(a, b) = a/EA, G_vv(a, b) = a²(3b − a)/(6 EI).
+    let (length, ei, a, b): (f64, f64, f64, f64) = (4.0, 2e6, 1.5, 3.0);
+    let ea = 1e6 * ei / (length * length);
+    let expected = [[a / ea, 0.0], [0.0, a * a * (3.0 * b - a) / (6.0 * ei)]];
+    let options = ArmOptions { gravity_m_s2: 0.0, ..ArmOptions::default() };
+    for modes in [1, 3, 8] {
+        let arm =
+            ArmModel::new(model(uniform(length, ei, 30.0, 8)), Fidelity::Modal { modes }, options.clone()).unwrap();
+        let pins = arm.pin_couplings(&[[a, 0.0], [b, 0.0]]).unwrap();
+        for j in 0..2 {
+            let q = arm.static_deflection_under(0.0, &pins.rows[1][j]).unwrap();
+            for i in 0..2 {
+                let total = pins.rows[0][i].dot(&q) + pins.residual_flexibility_m_per_n[(i, 2 + j)];
+                assert!(
+                    (total - expected[i][j]).abs() < 1e-9 * expected[1][1],
+                    "modal({modes}): G[{i}][{j}] between the pins = {total:e} against {:e} m/N",
+                    expected[i][j]
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn the_residual_is_zero_where_no_mode_is_truncated_and_grows_as_modes_are_dropped() {
     let options = ArmOptions { gravity_m_s2: 0.0, ..ArmOptions::default() };
     let build = |f| ArmModel::new(model(uniform(4.0, 2e6, 30.0, 8)), f, options.clone()).unwrap();
-    let residual = |f| build(f).pin_coupling([1.5, -0.3]).unwrap().residual_flexibility_m_per_n[1][1];
+    let residual = |f| build(f).pin_couplings(&[[1.5, -0.3]]).unwrap().residual_flexibility_m_per_n[(1, 1)];
     assert_eq!(residual(Fidelity::Fe), 0.0);
     let all = build(Fidelity::Fe).elastic_dofs();
     let first = residual(Fidelity::Modal { modes: 1 });
@@ -101,16 +127,17 @@ fn three_modes_with_the_pin_residual_give_the_fe_arms_coupled_frequencies() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
     let m = Scenario::load(&path).unwrap().model;
     let pipearm::actuator::Actuator::Hydraulic(h) = &m.drive.actuator else { panic!("not hydraulic") };
-    let pin = m.arm_model(Fidelity::Modal { modes: 3 }).unwrap().pin_coupling(h.cylinder.arm_pin_m).unwrap();
+    let cylinder = h.cylinders.each[0];
+    let pin = m.arm_model(Fidelity::Modal { modes: 3 }).unwrap().pin_couplings(&[cylinder.arm_pin_m]).unwrap();
     let end = m.drive.motion.end_rad();
-    let [px, py] = h.cylinder.arm_pin_at_m(end);
-    let d = [px - h.cylinder.base_pin_m[0], py - h.cylinder.base_pin_m[1]];
+    let [px, py] = cylinder.arm_pin_at_m(end);
+    let d = [px - cylinder.base_pin_m[0], py - cylinder.base_pin_m[1]];
     let (s, c, l) = (end.sin(), end.cos(), d[0].hypot(d[1]));
-    let along = pin.flexibility_along_m_per_n([(c * d[0] + s * d[1]) / l, (-s * d[0] + c * d[1]) / l]);
-    let column = h.cylinder.oil_stiffness_n_m(h.circuit.bulk_modulus_pa, l);
+    let along = pin.flexibility_along_m_per_n(&[[(c * d[0] + s * d[1]) / l, (-s * d[0] + c * d[1]) / l]])[0];
+    let column = cylinder.oil_stiffness_n_m(h.circuit.bulk_modulus_pa, l);
     println!(
         "modal(3) residual at the pin {:.3e} m/N, {along:.3e} along the rod at the end; oil column 1/k {:.3e} m/N",
-        pin.residual_flexibility_m_per_n[1][1],
+        pin.residual_flexibility_m_per_n[(1, 1)],
         1.0 / column
     );
     let fe = coupled_hz(Fidelity::Fe, 70.0);

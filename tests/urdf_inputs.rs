@@ -53,7 +53,7 @@ fn the_shipped_robots_load() {
 #[test]
 fn the_full_scale_arm_carries_a_cylinder_and_a_servo_that_can_lift_it() {
     let robot = load_robot(&manifest().join("robots/pipe_arm.urdf")).unwrap();
-    let cylinder = robot.lift.cylinder.expect("<pipearm:cylinder> on joint lift");
+    let cylinder = robot.lift.cylinders.expect("<pipearm:cylinder> on joint lift").each[0];
     let servo = robot.lift.servo.expect("<pipearm:servo> on joint lift");
     // Over the lift (0..90 deg) the cylinder keeps a lever of 0.3 m at least, and over the
     // joint's whole range it stays inside its stroke.

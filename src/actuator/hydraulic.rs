@@ -188,11 +188,90 @@ impl HydraulicCircuit {
     }
 }
 
-/// A hydraulic drive: cylinder, circuit and controller.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// How the cylinders on the lift joint are fed: the `valve` attribute of each
+/// `<pipearm:cylinder>` (all of a joint's must agree).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ValveFeed {
+    /// One valve feeds them all in parallel: their cap sides joined, their rod sides joined, one
+    /// pair of chamber pressures.
+    #[default]
+    Shared,
+    /// Each cylinder has a valve of its own (the scenario's `actuator.valve`, one per cylinder)
+    /// and its own chamber pressures; every spool follows the one controller's command.
+    Own,
+}
+
+impl ValveFeed {
+    /// The spelling of the URDF's `valve` attribute.
+    pub fn name(self) -> &'static str {
+        match self {
+            ValveFeed::Shared => "shared",
+            ValveFeed::Own => "own",
+        }
+    }
+}
+
+/// The cylinders on the lift joint (at least one) and how their valves feed them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cylinders {
+    /// Each cylinder, in the URDF's order.
+    pub each: Vec<Cylinder>,
+    /// One valve for all, or one each.
+    pub feed: ValveFeed,
+}
+
+impl Cylinders {
+    /// A single cylinder.
+    pub fn one(cylinder: Cylinder) -> Self {
+        Cylinders { each: vec![cylinder], feed: ValveFeed::Shared }
+    }
+
+    /// How many pairs of chamber pressures they have: one shared, or one per cylinder.
+    pub fn chambers(&self) -> usize {
+        match self.feed {
+            ValveFeed::Shared => 1,
+            ValveFeed::Own => self.each.len(),
+        }
+    }
+
+    /// The pair of chamber pressures cylinder `i` reads.
+    pub fn chamber_of(&self, i: usize) -> usize {
+        match self.feed {
+            ValveFeed::Shared => 0,
+            ValveFeed::Own => i,
+        }
+    }
+
+    /// The cap-side and rod-side areas times each cylinder's moment arm at hub angle `angle_rad`,
+    /// summed: the hub torque per pascal in the cap and in the rod side, m³ (all chambers at the
+    /// same pressures).
+    pub fn moment_areas_m3(&self, angle_rad: f64) -> (f64, f64) {
+        let levers: Vec<f64> = self.each.iter().map(|c| c.length_and_arm(angle_rad).1).collect();
+        self.moment_areas_with(&levers)
+    }
+
+    /// [`Self::moment_areas_m3`] with the moment arms `levers_m` given (the deformed arm's).
+    fn moment_areas_with(&self, levers_m: &[f64]) -> (f64, f64) {
+        self.each
+            .iter()
+            .zip(levers_m)
+            .fold((0.0, 0.0), |(a1, a2), (c, l)| (a1 + c.cap_area_m2() * l, a2 + c.rod_area_m2() * l))
+    }
+}
+
+/// How outputs number cylinder `k` (from 0) among `count`: a lone cylinder has no number
+/// (`actuator.rod_force`, `plots/pins/cylinder`), several are numbered from 1 in the URDF's
+/// order (`actuator.rod_force.2`, `plots/pins/cylinder/2`).
+pub fn cylinder_number(k: usize, count: usize) -> Option<usize> {
+    (count > 1).then_some(k + 1)
+}
+
+/// A hydraulic drive: cylinders, circuit and controller.
+#[derive(Debug, Clone, PartialEq)]
 pub struct HydraulicDrive {
-    /// The cylinder and hoses.
-    pub cylinder: Cylinder,
+    /// The cylinders and hoses.
+    pub cylinders: Cylinders,
     /// The circuit's operation.
     pub circuit: HydraulicCircuit,
     /// The position controller on the joint angle; its output is the spool command.
@@ -200,16 +279,17 @@ pub struct HydraulicDrive {
 }
 
 impl HydraulicDrive {
-    /// Chamber pressures (cap, rod) and spool opening that hold a rod force `force_n` at rest:
-    /// p₁ A₁ − p₂ A₂ = F with no net flow into either chamber. Without leakage the spool is
-    /// centred and p₁ + p₂ = p_s + p_t (a matched valve's null); with it, the spool opens just
-    /// enough to feed the leaks (Newton's method from there). `Err` when no such state lies
-    /// between tank and supply.
-    pub fn holding_state(&self, force_n: f64) -> Result<([f64; 2], f64), String> {
-        let (a1, a2) = (self.cylinder.cap_area_m2(), self.cylinder.rod_area_m2());
+    /// Chamber pressures (cap, rod) and spool opening that hold a hub torque `torque_n_m` at
+    /// rest, the cylinders' moment arms `levers_m`: Σ (p₁ A₁ − p₂ A₂) lever = torque with no
+    /// net flow into any chamber. Every valve sits at the same null, so every chamber pair holds
+    /// the same pressures. Without leakage the spool is centred and p₁ + p₂ = p_s + p_t (a
+    /// matched valve's null); with it, the spool opens just enough to feed the leaks (Newton's
+    /// method from there). `Err` when no such state lies between tank and supply.
+    pub fn holding_state(&self, torque_n_m: f64, levers_m: &[f64]) -> Result<([f64; 2], f64), String> {
+        let (a1, a2) = self.cylinders.moment_areas_with(levers_m);
         let (ps, pt) = (self.circuit.supply_pressure_pa, self.circuit.tank_pressure_pa);
-        let pressures = |p1: f64| [p1, (p1 * a1 - force_n) / a2];
-        let (mut p1, mut spool) = ((force_n + a2 * (ps + pt)) / (a1 + a2), 0.0);
+        let pressures = |p1: f64| [p1, (p1 * a1 - torque_n_m) / a2];
+        let (mut p1, mut spool) = ((torque_n_m + a2 * (ps + pt)) / (a1 + a2), 0.0);
         let residual = |p1: f64, spool: f64| self.circuit.flows_m3_s(spool, pressures(p1));
         for _ in 0..50 {
             let r = residual(p1, spool);
@@ -226,7 +306,7 @@ impl HydraulicDrive {
         let p = pressures(p1);
         if p.iter().chain([&spool]).any(|v| !v.is_finite()) || p.iter().any(|p| !(pt..=ps).contains(p)) {
             return Err(format!(
-                "holding the arm takes a rod force of {force_n:.0} N, which needs chamber pressures \
+                "holding the arm takes {torque_n_m:.0} N·m at the hub, which needs chamber pressures \
                  {:.3e} and {:.3e} Pa outside tank to supply ({pt:.3e} to {ps:.3e} Pa)",
                 p[0], p[1]
             ));
@@ -234,20 +314,27 @@ impl HydraulicDrive {
         Ok((p, spool))
     }
 
-    /// The spool opening whose flow through the metering-in land moves the rod at `rate_m_s`
-    /// with the chambers at `pressures_pa` (cap, rod): A₁ ṡ = K x √(p_s − p₁) extending,
-    /// A₂ |ṡ| = K |x| √(p_s − p₂) retracting — the controller reads the chamber pressures, so the
+    /// The spool opening whose flow through the metering-in lands turns the hub at `rate_rad_s`
+    /// at `angle_rad` with the chambers at `pressures_pa` (cap, rod; one pair per valve):
+    /// Σ A₁ ṡ = K x √(p_s − p₁) extending, Σ A₂ |ṡ| = K |x| √(p_s − p₂) retracting, per valve,
+    /// averaged over the valves — the controller reads the chamber pressures, so the
     /// feed-forward follows the load (a drop fixed in advance would be off by the load's share).
-    pub fn feedforward_opening(&self, rate_m_s: f64, pressures_pa: [f64; 2]) -> f64 {
+    pub fn feedforward_opening(&self, angle_rad: f64, rate_rad_s: f64, pressures_pa: &[[f64; 2]]) -> f64 {
         let c = &self.circuit;
-        let (area, chamber) = if rate_m_s >= 0.0 {
-            (self.cylinder.cap_area_m2(), pressures_pa[0])
-        } else {
-            (self.cylinder.rod_area_m2(), pressures_pa[1])
-        };
-        // Floored at a tenth of the supply: a chamber at supply pressure leaves no drop to meter.
-        let drop = (c.supply_pressure_pa - chamber).max(0.1 * c.supply_pressure_pa);
-        area * rate_m_s / (c.valve.flow_gain() * drop.sqrt())
+        let cylinders = &self.cylinders;
+        let mut demand = vec![(0.0, 0.0); cylinders.chambers()];
+        for (i, cylinder) in cylinders.each.iter().enumerate() {
+            let rate_m_s = cylinder.length_and_arm(angle_rad).1 * rate_rad_s;
+            let d = &mut demand[cylinders.chamber_of(i)];
+            (d.0, d.1) = (d.0 + cylinder.cap_area_m2() * rate_m_s, d.1 + cylinder.rod_area_m2() * rate_m_s);
+        }
+        let opening = demand.iter().zip(pressures_pa).map(|(&(cap_flow, rod_flow), p)| {
+            let (flow, chamber) = if cap_flow >= 0.0 { (cap_flow, p[0]) } else { (rod_flow, p[1]) };
+            // Floored at a tenth of the supply: a chamber at supply pressure leaves no drop to meter.
+            let drop = (c.supply_pressure_pa - chamber).max(0.1 * c.supply_pressure_pa);
+            flow / (c.valve.flow_gain() * drop.sqrt())
+        });
+        opening.sum::<f64>() / demand.len() as f64
     }
 }
 

@@ -6,8 +6,8 @@
 //! - [`Actuator::Servo`]: a motor behind a gearbox and a drive-train spring, under a discrete
 //!   PID position controller with velocity and acceleration feed-forward, its torque saturated
 //!   with anti-windup ([`servo`]).
-//! - [`Actuator::Hydraulic`]: a double-acting cylinder between a pin on the base and a pin on the
-//!   arm, its chamber pressures built up from the oil's bulk modulus (Merritt's equations), a
+//! - [`Actuator::Hydraulic`]: double-acting cylinders (one or several) each between a pin on the
+//!   base and a pin on the arm, fed by one valve or by one each, its chamber pressures built up from the oil's bulk modulus (Merritt's equations), a
 //!   proportional valve with a first-order spool, a relief valve per chamber, end of stroke, and
 //!   a discrete position controller driving the valve ([`hydraulic`]).
 //!
@@ -19,15 +19,17 @@
 //! pivot, x horizontal and y up in the base frame, x along the arm and y across it in the arm's
 //! hub frame.
 
+mod column;
 pub mod controller;
 pub mod hydraulic;
 mod plant;
 pub mod servo;
 mod summary;
 
+pub use column::{CylinderStrokes, PerCylinder, Stroke};
 pub use controller::{Controller, ControllerGains};
-pub use hydraulic::{Cylinder, HydraulicCircuit, HydraulicDrive, Valve};
-pub use plant::{ActuatorOutputs, ActuatorPlant, PinCoupling, Stroke};
+pub use hydraulic::{Cylinder, Cylinders, HydraulicCircuit, HydraulicDrive, Valve, ValveFeed, cylinder_number};
+pub use plant::{ActuatorOutputs, ActuatorPlant, CylinderReading, PinCouplings, Strokes};
 pub use servo::{ServoDrive, ServoMachine};
 pub use summary::ActuatorSummary;
 

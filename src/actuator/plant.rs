@@ -3,28 +3,38 @@
 //!
 //! The arm's integrator coordinates become [θ, q, own] where `own` is
 //! - servo: the motor angle φ (second order, inertia N² J_m);
-//! - hydraulic: the first-order block (p₁/p_s, p₂/p_s, spool opening), carried as *rates*: a
-//!   first-order state z enters the integrators as the velocity of a coordinate whose position
-//!   is not used (ż is its acceleration), so every integrator's velocity update advances it and
-//!   the implicit ones solve it in the same Newton iteration as the arm. Pressures are scaled by
-//!   the supply pressure so that the iteration's norms weigh them like the arm's coordinates.
+//! - hydraulic: the first-order block (p₁/p_s, p₂/p_s per valve, then the spool opening),
+//!   carried as *rates*: a first-order state z enters the integrators as the velocity of a
+//!   coordinate whose position is not used (ż is its acceleration), so every integrator's
+//!   velocity update advances it and the implicit ones solve it in the same Newton iteration as
+//!   the arm. Pressures are scaled by the supply pressure so that the iteration's norms weigh
+//!   them like the arm's coordinates.
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
+use smallvec::SmallVec;
 
+use super::column::{self, CylinderStrokes, PerCylinder, Stroke};
 use super::{Actuator, Controller, HydraulicDrive};
 use crate::drive::{DriveState, MotionProfile};
 
-/// What an actuator reports at one instant.
+/// What one cylinder reports at one instant.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CylinderReading {
+    /// Rod force (positive: extending), N.
+    pub rod_force_n: f64,
+    /// Chamber pressures (cap, rod), Pa.
+    pub pressures_pa: [f64; 2],
+    /// Pin-to-pin length, m.
+    pub length_m: f64,
+}
+
+/// What an actuator reports at one instant.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct ActuatorOutputs {
     /// Torque the actuator puts on the hub, N·m.
     pub hub_torque_n_m: f64,
-    /// Rod force of a cylinder (positive: extending), N.
-    pub rod_force_n: Option<f64>,
-    /// Chamber pressures of a cylinder (cap, rod), Pa.
-    pub pressures_pa: Option<[f64; 2]>,
-    /// Pin-to-pin length of a cylinder, m.
-    pub cylinder_length_m: Option<f64>,
+    /// Each cylinder's readings, in the URDF's order (none without cylinders).
+    pub cylinders: SmallVec<[CylinderReading; 2]>,
     /// The controller's held output (hub torque N·m, or spool command).
     pub command: f64,
     /// Reference angle minus hub angle, rad.
@@ -40,49 +50,51 @@ pub struct ActuatorPlant {
     pub reference: MotionProfile,
     /// The running controller.
     pub controller: Controller,
-    /// A cylinder's arm pin on the arm it drives, set by that arm: the rod pushes on the
+    /// The cylinders' arm pins on the arm they drive, set by that arm: the rods push on the
     /// deformed arm.
-    pub arm_pin: Option<PinCoupling>,
+    pub arm_pins: Option<PinCouplings>,
 }
 
-/// A cylinder's arm pin as the arm's model sees it.
+/// The cylinders' arm pins as the arm's model sees them.
 #[derive(Debug, Clone, PartialEq)]
-pub struct PinCoupling {
-    /// The pin's hub-frame (axial, transverse) displacement as rows over the elastic coordinates.
-    pub rows: [DVector<f64>; 2],
-    /// The static flexibility at the pin that the elastic coordinates leave out (the truncated
-    /// modes' share), hub frame, m/N: a massless spring in series with the oil column
-    /// (docs/model-actuators.md, "The cylinder's pin: residual flexibility").
-    pub residual_flexibility_m_per_n: [[f64; 2]; 2],
+pub struct PinCouplings {
+    /// Per pin, its hub-frame (axial, transverse) displacement as rows over the elastic
+    /// coordinates.
+    pub rows: Vec<[DVector<f64>; 2]>,
+    /// The static flexibility between the pins that the elastic coordinates leave out (the
+    /// truncated modes' share), hub frame, m/N: entry (2i + a, 2j + b) is pin i's displacement
+    /// along axis a per newton on pin j along axis b. A massless spring in series with the oil
+    /// columns (docs/model-actuators.md, "The cylinder's pin: residual flexibility").
+    pub residual_flexibility_m_per_n: DMatrix<f64>,
 }
 
-impl PinCoupling {
-    /// The residual flexibility along a hub-frame unit vector `unit` (the rod's), m/N.
-    pub fn flexibility_along_m_per_n(&self, unit: [f64; 2]) -> f64 {
+impl PinCouplings {
+    /// The residual flexibility between the rods along their hub-frame unit vectors `units`,
+    /// row-major n × n, m/N.
+    pub fn flexibility_along_m_per_n(&self, units: &[[f64; 2]]) -> SmallVec<[f64; 4]> {
         let c = &self.residual_flexibility_m_per_n;
-        unit[0] * (c[0][0] * unit[0] + c[0][1] * unit[1]) + unit[1] * (c[1][0] * unit[0] + c[1][1] * unit[1])
+        let mut out = SmallVec::new();
+        for (i, u) in units.iter().enumerate() {
+            for (j, w) in units.iter().enumerate() {
+                let entry = |a: usize, b: usize| c[(2 * i + a, 2 * j + b)];
+                out.push(
+                    u[0] * (entry(0, 0) * w[0] + entry(0, 1) * w[1]) + u[1] * (entry(1, 0) * w[0] + entry(1, 1) * w[1]),
+                );
+            }
+        }
+        out
     }
 }
 
-/// The actuator's stroke as the arm's step hands it over: the hub's (θ, θ̇) for a servo; for a
-/// hydraulic drive the pin-to-pin length and rate the arm's coordinates give (m, m/s), and the
-/// residual flexibility in series with the rod (m/N), which lengthens the cylinder by its
-/// flexibility times the rod's pressure force.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Stroke {
-    /// Hub angle (rad), or the pin-to-pin length the arm's coordinates give (m).
-    pub position: f64,
-    /// Its rate, rad/s or m/s.
-    pub rate: f64,
-    /// Flexibility in series with the rod, m/N (0 for a servo).
-    pub series_flexibility_m_per_n: f64,
-}
-
-impl Stroke {
-    /// A stroke with no series flexibility.
-    pub fn rigid(position: f64, rate: f64) -> Self {
-        Stroke { position, rate, series_flexibility_m_per_n: 0.0 }
-    }
+/// The actuator's stroke as the arm's step hands it over: the hub's (θ, θ̇) for a servo; for
+/// cylinders each pin-to-pin length and rate the arm's coordinates give, and the residual
+/// flexibility in series with the rods.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Strokes {
+    /// The hub's angle and rate (rad, rad/s).
+    Hub(Stroke),
+    /// The cylinders' strokes.
+    Cylinders(CylinderStrokes),
 }
 
 impl ActuatorPlant {
@@ -95,7 +107,7 @@ impl ActuatorPlant {
             Actuator::Servo(s) => s.machine.hub_torque_limit_n_m(),
             _ => 1.0,
         };
-        Some(ActuatorPlant { actuator, reference, controller: Controller::new(gains, period_s, limit), arm_pin: None })
+        Some(ActuatorPlant { actuator, reference, controller: Controller::new(gains, period_s, limit), arm_pins: None })
     }
 
     /// Second-order coordinates it adds (the servo's motor angle).
@@ -103,9 +115,12 @@ impl ActuatorPlant {
         usize::from(matches!(self.actuator, Actuator::Servo(_)))
     }
 
-    /// First-order states it adds (the hydraulic pressures and spool).
+    /// First-order states it adds (the hydraulic pressures, a pair per valve, and the spool).
     pub fn first_order_dofs(&self) -> usize {
-        if matches!(self.actuator, Actuator::Hydraulic(_)) { 3 } else { 0 }
+        match &self.actuator {
+            Actuator::Hydraulic(h) => column::spool_index(h) + 1,
+            _ => 0,
+        }
     }
 
     /// All coordinates it adds.
@@ -121,26 +136,27 @@ impl ActuatorPlant {
         }
     }
 
-    /// What it puts on the arm at `stroke` with its coordinates `x` and rates `v`: the torque on
-    /// the hub (servo, N·m) or the rod force (hydraulic, N, positive extending).
-    pub fn load(&self, stroke: Stroke, x: &[f64], v: &[f64]) -> f64 {
-        match &self.actuator {
-            Actuator::Ideal => 0.0,
-            Actuator::Servo(s) => s.machine.spring_torque_n_m((x[0], v[0]), (stroke.position, stroke.rate)),
-            Actuator::Hydraulic(h) => rod_force_n(h, stroke, v),
+    /// What it puts on the arm at `strokes` with its coordinates `x` and rates `v`: the torque on
+    /// the hub (servo, N·m, one entry) or each cylinder's rod force (N, positive extending).
+    pub fn load(&self, strokes: &Strokes, x: &[f64], v: &[f64]) -> PerCylinder {
+        match (&self.actuator, strokes) {
+            (Actuator::Servo(s), Strokes::Hub(hub)) => {
+                PerCylinder::from_elem(s.machine.spring_torque_n_m((x[0], v[0]), (hub.position, hub.rate)), 1)
+            }
+            (Actuator::Hydraulic(h), Strokes::Cylinders(c)) => column::rod_forces_n(h, c, v),
+            _ => PerCylinder::from_elem(0.0, 1),
         }
     }
 
     /// Writes the generalized forces of its coordinates into `f` (the motor's torques; the
     /// first-order states' rates).
-    pub fn forces(&self, stroke: Stroke, x: &[f64], v: &[f64], f: &mut [f64]) {
-        match &self.actuator {
-            Actuator::Ideal => {}
-            Actuator::Servo(s) => {
-                f[0] =
-                    self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), (stroke.position, stroke.rate))
+    pub fn forces(&self, strokes: &Strokes, x: &[f64], v: &[f64], f: &mut [f64]) {
+        match (&self.actuator, strokes) {
+            (Actuator::Servo(s), Strokes::Hub(hub)) => {
+                f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), (hub.position, hub.rate))
             }
-            Actuator::Hydraulic(h) => hydraulic_rates(h, stroke, self.controller.output, v, f),
+            (Actuator::Hydraulic(h), Strokes::Cylinders(c)) => column::rates(h, c, self.controller.output, v, f),
+            _ => {}
         }
     }
 
@@ -148,7 +164,7 @@ impl ActuatorPlant {
     /// torque balance (1), or the spool's lag (1/τ_s).
     pub fn command_row(&self) -> (usize, f64) {
         match &self.actuator {
-            Actuator::Hydraulic(h) => (2, 1.0 / h.circuit.valve.spool_time_constant_s),
+            Actuator::Hydraulic(h) => (column::spool_index(h), 1.0 / h.circuit.valve.spool_time_constant_s),
             _ => (0, 1.0),
         }
     }
@@ -171,7 +187,7 @@ impl ActuatorPlant {
     }
 
     /// The reference at `t_s`, what the controller measures — the motor's (φ, φ̇) for a servo,
-    /// the hub's (θ, θ̇) for a cylinder — and the feed-forward.
+    /// the hub's (θ, θ̇) for cylinders — and the feed-forward.
     fn measure(&self, t_s: f64, hub: (f64, f64), x: &[f64], v: &[f64]) -> (DriveState, (f64, f64), f64) {
         let reference = self.reference.sample(t_s);
         match &self.actuator {
@@ -186,28 +202,32 @@ impl ActuatorPlant {
         self.controller.next_sample_s
     }
 
-    /// How far below the reference the hub rests when it holds `load` at rest (a servo's hub
-    /// torque, N·m; a cylinder's rod force, N), rad: the drive train's twist, and the offset a
-    /// proportional controller needs for its output (a servo's torque, a leaking valve's spool
-    /// opening).
-    pub fn static_lag_rad(&self, load: f64) -> f64 {
+    /// How far below the reference the hub rests when it holds a hub torque `torque_n_m` at
+    /// rest (cylinders on moment arms `levers_m`), rad: the drive train's twist, and the offset
+    /// a proportional controller needs for its output (a servo's torque, a leaking valve's
+    /// spool opening).
+    pub fn static_lag_rad(&self, torque_n_m: f64, levers_m: &[f64]) -> f64 {
         let c = &self.controller.gains;
         // With integral action the integral holds the output (and without gains nothing does:
         // `holding` refuses it).
         let offset = |output: f64| if c.ki > 0.0 || c.kp <= 0.0 { 0.0 } else { output / c.kp };
         match &self.actuator {
-            Actuator::Servo(s) => load / s.machine.stiffness_n_m_per_rad + offset(load),
-            Actuator::Hydraulic(h) => h.holding_state(load).map_or(0.0, |(_, spool)| offset(spool)),
+            Actuator::Servo(s) => torque_n_m / s.machine.stiffness_n_m_per_rad + offset(torque_n_m),
+            Actuator::Hydraulic(h) => h.holding_state(torque_n_m, levers_m).map_or(0.0, |(_, spool)| offset(spool)),
             Actuator::Ideal => 0.0,
         }
     }
 
-    /// Its coordinates and rates holding the hub at rest at `angle_rad` with a load `load` (the
-    /// hub torque of a servo, N·m; the rod force of a cylinder, N), the controller preset to
-    /// hold it (the arm waits on its drive before the lift). `Err` with a reason when the
-    /// actuator cannot hold it.
-    pub fn holding(&mut self, angle_rad: f64, load: f64) -> Result<(DVector<f64>, DVector<f64>), String> {
-        let torque_n_m = load;
+    /// Its coordinates and rates holding the hub at rest at `angle_rad` against a hub torque
+    /// `torque_n_m` (cylinders on moment arms `levers_m`), the controller preset to hold it
+    /// (the arm waits on its drive before the lift). `Err` with a reason when the actuator
+    /// cannot hold it.
+    pub fn holding(
+        &mut self,
+        angle_rad: f64,
+        torque_n_m: f64,
+        levers_m: &[f64],
+    ) -> Result<(DVector<f64>, DVector<f64>), String> {
         let n = self.dofs();
         let (mut x, mut v) = (DVector::zeros(n), DVector::zeros(n));
         match &self.actuator {
@@ -227,10 +247,14 @@ impl ActuatorPlant {
                 }
             }
             Actuator::Hydraulic(h) => {
-                let (p, spool) =
-                    h.holding_state(load).map_err(|why| format!("at {:.1} deg, {why}", angle_rad.to_degrees()))?;
+                let (p, spool) = h
+                    .holding_state(torque_n_m, levers_m)
+                    .map_err(|why| format!("at {:.1} deg, {why}", angle_rad.to_degrees()))?;
                 let ps = h.circuit.supply_pressure_pa;
-                (v[0], v[1], v[2]) = (p[0] / ps, p[1] / ps, spool);
+                for g in 0..h.cylinders.chambers() {
+                    (v[2 * g], v[2 * g + 1]) = (p[0] / ps, p[1] / ps);
+                }
+                v[column::spool_index(h)] = spool;
                 self.controller.hold(spool);
                 return Ok((x, v));
             }
@@ -239,92 +263,39 @@ impl ActuatorPlant {
         Ok((x, v))
     }
 
-    /// What it reports at time `t_s` with the hub at `angle_rad`, at `stroke`, putting
+    /// What it reports at time `t_s` with the hub at `angle_rad`, at `strokes`, putting
     /// `hub_torque_n_m` on the hub.
-    pub fn outputs(&self, t_s: f64, angle_rad: f64, stroke: Stroke, hub_torque_n_m: f64, v: &[f64]) -> ActuatorOutputs {
+    pub fn outputs(
+        &self,
+        t_s: f64,
+        angle_rad: f64,
+        strokes: &Strokes,
+        hub_torque_n_m: f64,
+        v: &[f64],
+    ) -> ActuatorOutputs {
         let mut out = ActuatorOutputs {
             hub_torque_n_m,
             command: self.controller.output,
             tracking_error_rad: self.reference.sample(t_s).angle_rad - angle_rad,
             ..ActuatorOutputs::default()
         };
-        if let Actuator::Hydraulic(h) = &self.actuator {
-            let ps = h.circuit.supply_pressure_pa;
-            out.rod_force_n = Some(rod_force_n(h, stroke, v));
-            out.pressures_pa = Some([v[0] * ps, v[1] * ps]);
-            out.cylinder_length_m = Some(stroke.position + stroke.series_flexibility_m_per_n * pressure_force_n(h, v));
+        if let (Actuator::Hydraulic(h), Strokes::Cylinders(c)) = (&self.actuator, strokes) {
+            let (forces, lengths) = (column::rod_forces_n(h, c, v), column::cylinder_lengths_m(h, c, v));
+            let pressures = column::pressures_pa(h, v);
+            out.cylinders = (0..forces.len())
+                .map(|i| CylinderReading { rod_force_n: forces[i], pressures_pa: pressures[i], length_m: lengths[i] })
+                .collect();
         }
         out
     }
 }
 
-/// The rod's force from the chamber pressures, scaled `v[0..2]`, N.
-fn pressure_force_n(h: &HydraulicDrive, v: &[f64]) -> f64 {
-    let c = &h.cylinder;
-    h.circuit.supply_pressure_pa * (v[0] * c.cap_area_m2() - v[1] * c.rod_area_m2())
-}
-
-/// Rod force (N) at `stroke` with scaled pressures `v[0..2]` and the spool `v[2]`: the pressures'
-/// force and, past the stroke, the end cap's.
-fn rod_force_n(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> f64 {
-    let c = &h.cylinder;
-    let force = pressure_force_n(h, v);
-    let length = stroke.position + stroke.series_flexibility_m_per_n * force;
-    let extension = length - c.closed_length_m;
-    if (0.0..=c.stroke_m).contains(&extension) {
-        return force;
-    }
-    force + c.end_stop_force_n(length, ColumnFlow::at(h, stroke, v).rate_m_s)
-}
-
-/// The oil column under a series flexibility c: the cylinder's length is s + c F_p (F_p the
-/// pressures' force) and its rate ṡ + c Ḟ_p, with Ḟ_p = Ḟ₀ − k ṡ_eff from the chamber equations
-/// (Ḟ₀ the valve's flows' share, k = β (A₁²/V₁ + A₂²/V₂) the oil spring), so
-/// ṡ_eff = (ṡ + c Ḟ₀) / (1 + c k): the column and the flexibility in series.
-struct ColumnFlow {
-    /// Chamber volumes (cap, rod), m³.
-    volumes_m3: (f64, f64),
-    /// Flows into the chambers through the valve, relief included (cap, rod), m³/s.
-    flows_m3_s: [f64; 2],
-    /// The cylinder's rate of extension, m/s.
-    rate_m_s: f64,
-}
-
-impl ColumnFlow {
-    fn at(h: &HydraulicDrive, stroke: Stroke, v: &[f64]) -> Self {
-        let (c, circuit) = (&h.cylinder, &h.circuit);
-        let ps = circuit.supply_pressure_pa;
-        let flexibility = stroke.series_flexibility_m_per_n;
-        let (v1, v2) = c.volumes_m3(stroke.position + flexibility * pressure_force_n(h, v));
-        let (v1, v2) = (v1.max(1e-9), v2.max(1e-9));
-        let flows = circuit.flows_m3_s(v[2].clamp(-1.0, 1.0), [v[0] * ps, v[1] * ps]);
-        let (a1, a2, beta) = (c.cap_area_m2(), c.rod_area_m2(), circuit.bulk_modulus_pa);
-        let rate_m_s = if flexibility > 0.0 {
-            let force_rate = beta * (a1 * flows[0] / v1 - a2 * flows[1] / v2);
-            let column = beta * (a1 * a1 / v1 + a2 * a2 / v2);
-            (stroke.rate + flexibility * force_rate) / (1.0 + flexibility * column)
-        } else {
-            stroke.rate
-        };
-        ColumnFlow { volumes_m3: (v1, v2), flows_m3_s: flows, rate_m_s }
-    }
-}
-
-/// Rates of the scaled pressures and of the spool (module doc of [`super::hydraulic`]).
-fn hydraulic_rates(h: &HydraulicDrive, stroke: Stroke, command: f64, v: &[f64], f: &mut [f64]) {
-    let (c, circuit) = (&h.cylinder, &h.circuit);
-    let ColumnFlow { volumes_m3: (v1, v2), flows_m3_s: [q1, q2], rate_m_s } = ColumnFlow::at(h, stroke, v);
-    let beta = circuit.bulk_modulus_pa / circuit.supply_pressure_pa;
-    f[0] = beta / v1 * (q1 - c.cap_area_m2() * rate_m_s);
-    f[1] = beta / v2 * (q2 + c.rod_area_m2() * rate_m_s);
-    f[2] = (command - v[2]) / circuit.valve.spool_time_constant_s;
-}
-
 /// The spool command that feeds the reference forward (module doc of [`super::hydraulic`]).
 fn hydraulic_feedforward(h: &HydraulicDrive, controller: &Controller, reference: &DriveState, v: &[f64]) -> f64 {
-    let (_, arm) = h.cylinder.length_and_arm(reference.angle_rad);
     let gains = &controller.gains;
-    let pressures = [v[0], v[1]].map(|p| p * h.circuit.supply_pressure_pa);
-    gains.velocity_feedforward * h.feedforward_opening(arm * reference.rate_rad_s, pressures)
+    let ps = h.circuit.supply_pressure_pa;
+    let pressures: SmallVec<[[f64; 2]; 2]> =
+        (0..h.cylinders.chambers()).map(|g| [v[2 * g] * ps, v[2 * g + 1] * ps]).collect();
+    gains.velocity_feedforward * h.feedforward_opening(reference.angle_rad, reference.rate_rad_s, &pressures)
         + gains.acceleration_feedforward * reference.accel_rad_s2
 }

@@ -12,10 +12,10 @@ pub struct ActuatorSummary {
     pub kind: String,
     /// Largest |torque| the actuator puts on the hub, N·m.
     pub peak_torque_n_m: f64,
-    /// Largest |rod force| of a cylinder, N.
+    /// Largest |rod force| of any cylinder, N.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_force_n: Option<f64>,
-    /// Largest pressure in either chamber of a cylinder, Pa.
+    /// Largest pressure in any chamber of any cylinder, Pa.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub peak_pressure_pa: Option<f64>,
     /// Largest |reference − hub angle| over the run, deg.
@@ -43,8 +43,8 @@ impl ActuatorSummary {
         ActuatorSummary {
             kind: kind.into(),
             peak_torque_n_m: hub_torque_n_m.iter().map(|t| t.abs()).fold(0.0, f64::max),
-            peak_force_n: outputs.iter().filter_map(|o| o.rod_force_n).map(f64::abs).reduce(f64::max),
-            peak_pressure_pa: outputs.iter().filter_map(|o| o.pressures_pa).flatten().reduce(f64::max),
+            peak_force_n: outputs.iter().flat_map(|o| &o.cylinders).map(|c| c.rod_force_n.abs()).reduce(f64::max),
+            peak_pressure_pa: outputs.iter().flat_map(|o| &o.cylinders).flat_map(|c| c.pressures_pa).reduce(f64::max),
             max_tracking_error_deg: tracking.to_degrees(),
             overtravel_deg: if beyond.is_finite() { beyond.to_degrees() } else { 0.0 },
         }

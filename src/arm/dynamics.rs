@@ -3,10 +3,11 @@
 use std::cell::{Cell, RefCell};
 
 use nalgebra::{DMatrix, DVector};
+use smallvec::SmallVec;
 
 use super::products::{add_product, bilinear, dot, product};
 use super::{ArmContact, ArmModel, Energies};
-use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, PinCoupling, Stroke};
+use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, CylinderStrokes, Stroke, Strokes};
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -336,39 +337,52 @@ impl ArmSystem<'_> {
         }
     }
 
-    /// The actuator's stroke at (x, v), and a cylinder's pin on the deformed arm.
-    fn actuator_stroke(&self, plant: &ActuatorPlant, x: &[f64], v: &[f64]) -> (Stroke, Option<ArmPin>) {
-        match (&plant.actuator, &plant.arm_pin) {
-            (Actuator::Hydraulic(h), Some(coupling)) => {
+    /// The actuator's strokes at (x, v), and the cylinders' pins on the deformed arm.
+    fn actuator_strokes(&self, plant: &ActuatorPlant, x: &[f64], v: &[f64]) -> (Strokes, SmallVec<[ArmPin; 2]>) {
+        match (&plant.actuator, &plant.arm_pins) {
+            (Actuator::Hydraulic(h), Some(couplings)) => {
                 let n = self.arm.elastic_dofs();
                 let (q, qd) = (&x[1..1 + n], &v[1..1 + n]);
-                let pin = ArmPin::at(&h.cylinder, coupling, (x[0], v[0]), q, qd);
-                (pin.stroke, Some(pin))
+                let pins: SmallVec<[ArmPin; 2]> = h
+                    .cylinders
+                    .each
+                    .iter()
+                    .zip(&couplings.rows)
+                    .map(|(c, rows)| ArmPin::at(c, rows, (x[0], v[0]), q, qd))
+                    .collect();
+                let units: SmallVec<[[f64; 2]; 2]> = pins.iter().map(|p| p.body_unit).collect();
+                let strokes = CylinderStrokes {
+                    strokes: pins.iter().map(|p| p.stroke).collect(),
+                    flexibility_m_per_n: couplings.flexibility_along_m_per_n(&units),
+                };
+                (Strokes::Cylinders(strokes), pins)
             }
-            _ => (Stroke::rigid(x[0], v[0]), None),
+            _ => (Strokes::Hub(Stroke { position: x[0], rate: v[0] }), SmallVec::new()),
         }
     }
 
     /// Adds the actuator's generalized forces at (x, v) to `f`: its load on the hub (a servo's
-    /// torque) or on the arm through the cylinder's pin (the rod force's moment on θ and its
+    /// torque) or on the arm through the cylinders' pins (each rod force's moment on θ and its
     /// work through q), and its own coordinates' forces and rates.
     pub(crate) fn add_actuator_forces(&self, x: &[f64], v: &[f64], f: &mut [f64]) {
         let Some(plant) = self.drive.plant() else { return };
         let own = 1 + self.arm.elastic_dofs();
-        let (stroke, pin) = self.actuator_stroke(plant, x, v);
-        let load = plant.load(stroke, &x[own..], &v[own..]);
-        match (pin, &plant.arm_pin) {
-            (Some(pin), Some(PinCoupling { rows, .. })) => {
-                f[0] += load * pin.lever_m;
-                for (i, fi) in f[1..own].iter_mut().enumerate() {
-                    *fi += load * (pin.body_unit[0] * rows[0][i] + pin.body_unit[1] * rows[1][i]);
+        let (strokes, pins) = self.actuator_strokes(plant, x, v);
+        let loads = plant.load(&strokes, &x[own..], &v[own..]);
+        match &plant.arm_pins {
+            Some(couplings) if !pins.is_empty() => {
+                for ((pin, rows), load) in pins.iter().zip(&couplings.rows).zip(&loads) {
+                    f[0] += load * pin.lever_m;
+                    for (i, fi) in f[1..own].iter_mut().enumerate() {
+                        *fi += load * (pin.body_unit[0] * rows[0][i] + pin.body_unit[1] * rows[1][i]);
+                    }
                 }
             }
-            _ => f[0] += load,
+            _ => f[0] += loads[0],
         }
-        let mut rates = [0.0; 4];
         let m = plant.dofs();
-        plant.forces(stroke, &x[own..], &v[own..], &mut rates[..m]);
+        let mut rates: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, m);
+        plant.forces(&strokes, &x[own..], &v[own..], &mut rates);
         f[own..own + m].iter_mut().zip(&rates).for_each(|(fi, r)| *fi += r);
     }
 
@@ -377,10 +391,11 @@ impl ArmSystem<'_> {
     pub(crate) fn actuator_outputs(&self, t_s: f64, x: &[f64], v: &[f64]) -> Option<ActuatorOutputs> {
         let plant = self.drive.plant()?;
         let own = 1 + self.arm.elastic_dofs();
-        let (stroke, pin) = self.actuator_stroke(plant, x, v);
-        let load = plant.load(stroke, &x[own..], &v[own..]);
-        let hub_torque = pin.map_or(load, |pin| load * pin.lever_m);
-        Some(plant.outputs(t_s, x[0], stroke, hub_torque, &v[own..]))
+        let (strokes, pins) = self.actuator_strokes(plant, x, v);
+        let loads = plant.load(&strokes, &x[own..], &v[own..]);
+        let hub_torque =
+            if pins.is_empty() { loads[0] } else { pins.iter().zip(&loads).map(|(p, l)| l * p.lever_m).sum() };
+        Some(plant.outputs(t_s, x[0], &strokes, hub_torque, &v[own..]))
     }
 
     /// Solves the free hub's M ẍ = rhs by eliminating q̈ with the constant M_qq⁻¹:
@@ -443,7 +458,7 @@ impl ArmSystem<'_> {
         let Some(plant) = self.drive.plant() else { return };
         let n = x.len();
         let own = 1 + self.arm.elastic_dofs();
-        let read = if plant.arm_pin.is_some() { 0..n } else { 0..1 };
+        let read = if plant.arm_pins.is_some() { 0..n } else { 0..1 };
         let columns: Vec<usize> = read.chain(own..n).collect();
         let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
         let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);
@@ -477,8 +492,7 @@ impl ArmSystem<'_> {
 /// A cylinder's arm pin on the deformed arm, and what the rod force does through it.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct ArmPin {
-    /// Pin-to-pin length and its rate from the arm's coordinates (m and m/s), and the residual
-    /// flexibility along the rod (m/N).
+    /// Pin-to-pin length and its rate from the arm's coordinates, m and m/s.
     pub stroke: Stroke,
     /// Moment about the pivot per newton of rod force, m.
     pub lever_m: f64,
@@ -487,10 +501,9 @@ pub(crate) struct ArmPin {
 }
 
 impl ArmPin {
-    /// The pin of `cylinder` on the arm as `coupling` describes it, the hub at (θ, θ̇) and the
-    /// arm at (q, q̇).
-    pub(crate) fn at(cylinder: &Cylinder, coupling: &PinCoupling, hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
-        let rows = &coupling.rows;
+    /// The pin of `cylinder` on the arm, its hub-frame displacement `rows` over q, the hub at
+    /// (θ, θ̇) and the arm at (q, q̇).
+    pub(crate) fn at(cylinder: &Cylinder, rows: &[DVector<f64>; 2], hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
         let [ax, ay] = cylinder.arm_pin_m;
         let body = [ax + dot(&rows[0], q), ay + dot(&rows[1], q)];
         // Hub-frame velocity of the pin: its elastic rate plus the frame's rotation θ̇ k × r.
@@ -501,15 +514,10 @@ impl ArmPin {
         let d = [point[0] - cylinder.base_pin_m[0], point[1] - cylinder.base_pin_m[1]];
         let length = d[0].hypot(d[1]);
         let unit = [d[0] / length, d[1] / length];
-        let body_unit = [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]];
         ArmPin {
-            stroke: Stroke {
-                position: length,
-                rate: unit[0] * velocity[0] + unit[1] * velocity[1],
-                series_flexibility_m_per_n: coupling.flexibility_along_m_per_n(body_unit),
-            },
+            stroke: Stroke { position: length, rate: unit[0] * velocity[0] + unit[1] * velocity[1] },
             lever_m: point[0] * unit[1] - point[1] * unit[0],
-            body_unit,
+            body_unit: [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]],
         }
     }
 }

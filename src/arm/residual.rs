@@ -8,47 +8,54 @@
 //! modes). The rest, G − Gₙ, is what the modes above n would contribute quasi-statically: they
 //! are stiff against the forcing, so their response follows the force without inertia.
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 use super::{ArmError, ArmModel, Fidelity};
-use crate::actuator::PinCoupling;
+use crate::actuator::PinCouplings;
 use crate::beam::BeamError;
 
 impl ArmModel {
-    /// A cylinder's arm pin at (x, y) in the hub frame (m; y across the arm, joined to the
-    /// section at x by a rigid bracket): its rows over q and the residual flexibility there.
-    pub fn pin_coupling(&self, pin_m: [f64; 2]) -> Result<PinCoupling, ArmError> {
-        let [x, y] = pin_m;
-        let [u, v, slope] = self.beam.point_rows(x);
-        let full = [u - y * slope, v];
-        let rows = full.each_ref().map(|r| self.basis.tr_mul(r));
-        let residual_flexibility_m_per_n = self.residual_flexibility_m_per_n(&full, &rows)?;
-        Ok(PinCoupling { rows, residual_flexibility_m_per_n })
+    /// Cylinders' arm pins at (x, y) in the hub frame (m; y across the arm, joined to the
+    /// section at x by a rigid bracket): their rows over q and the residual flexibility between
+    /// them (a force on one pin moves the others too).
+    pub fn pin_couplings(&self, pins_m: &[[f64; 2]]) -> Result<PinCouplings, ArmError> {
+        let full: Vec<DVector<f64>> = pins_m
+            .iter()
+            .flat_map(|&[x, y]| {
+                let [u, v, slope] = self.beam.point_rows(x);
+                [u - y * slope, v]
+            })
+            .collect();
+        let projected: Vec<DVector<f64>> = full.iter().map(|r| self.basis.tr_mul(r)).collect();
+        let residual_flexibility_m_per_n = self.residual_flexibility_m_per_n(&full, &projected)?;
+        let rows = projected.chunks(2).map(|pair| [pair[0].clone(), pair[1].clone()]).collect();
+        Ok(PinCouplings { rows, residual_flexibility_m_per_n })
     }
 
-    /// G − Gₙ (module doc) for the FE rows `full` and their projections `rows` on q, m/N. Zero
-    /// for the FE arm, which keeps every DOF, and for the rigid arm, which keeps no elasticity.
+    /// G − Gₙ (module doc) for the FE rows `full` and their projections `rows` on q, m/N,
+    /// symmetrised. Zero for the FE arm, which keeps every DOF, and for the rigid arm, which
+    /// keeps no elasticity.
     fn residual_flexibility_m_per_n(
         &self,
-        full: &[DVector<f64>; 2],
-        rows: &[DVector<f64>; 2],
-    ) -> Result<[[f64; 2]; 2], ArmError> {
+        full: &[DVector<f64>],
+        rows: &[DVector<f64>],
+    ) -> Result<DMatrix<f64>, ArmError> {
+        let m = full.len();
         if !matches!(self.fidelity, Fidelity::Modal { .. }) {
-            return Ok([[0.0; 2]; 2]);
+            return Ok(DMatrix::zeros(m, m));
         }
         let clamped = self.beam.stiffness.clone().cholesky().ok_or(BeamError::NotPositiveDefinite {
             matrix: "stiffness",
             why: "the clamped arm must be a structure".into(),
         })?;
-        let static_full = full.each_ref().map(|r| clamped.solve(r));
+        let static_full: Vec<DVector<f64>> = full.iter().map(|r| clamped.solve(r)).collect();
         let k = self.stiffness.clone().cholesky().ok_or(ArmError::InvalidParameter {
             name: "stiffness".into(),
             value: f64::NAN,
             allowed: "a positive definite reduced stiffness".into(),
         })?;
-        let kept = rows.each_ref().map(|r| k.solve(r));
+        let kept: Vec<DVector<f64>> = rows.iter().map(|r| k.solve(r)).collect();
         let entry = |i: usize, j: usize| full[i].dot(&static_full[j]) - rows[i].dot(&kept[j]);
-        let cross = 0.5 * (entry(0, 1) + entry(1, 0));
-        Ok([[entry(0, 0), cross], [cross, entry(1, 1)]])
+        Ok(DMatrix::from_fn(m, m, |i, j| 0.5 * (entry(i, j) + entry(j, i))))
     }
 }

@@ -100,10 +100,12 @@ impl ArmSimulation {
         integrator: IntegratorKind,
     ) -> Result<Self, ArmError> {
         if let Actuator::Hydraulic(h) = &plant.actuator {
-            plant.arm_pin = Some(arm.pin_coupling(h.cylinder.arm_pin_m)?);
+            let pins: Vec<[f64; 2]> = h.cylinders.each.iter().map(|c| c.arm_pin_m).collect();
+            plant.arm_pins = Some(arm.pin_couplings(&pins)?);
         }
-        let (angle, q0, load) = static_hold(&arm, &plant)?;
-        let (own_x, own_v) = plant.holding(angle, load).map_err(|why| ArmError::ActuatorCannotHold { load, why })?;
+        let Hold { angle_rad: angle, q: q0, torque_n_m: load, levers_m } = static_hold(&arm, &plant)?;
+        let (own_x, own_v) =
+            plant.holding(angle, load, &levers_m).map_err(|why| ArmError::ActuatorCannotHold { load, why })?;
         let n = arm.elastic_dofs();
         let coordinates = std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied());
         let x = DVector::from_iterator(1 + n + own_x.len(), coordinates);
@@ -424,28 +426,51 @@ fn prepend(first: f64, rest: &DVector<f64>) -> DVector<f64> {
     DVector::from_iterator(rest.len() + 1, std::iter::once(first).chain(rest.iter().copied()))
 }
 
-/// The hub's angle, the arm's deflection and the actuator's load (hub torque or rod force) at
-/// rest with the actuator holding the arm: gravity on the hub balanced by the actuator, the arm
-/// deflected by gravity and by a cylinder's pin force, the hub short of the reference by the
-/// drive's static lag. Each depends on the others: a fixed point a stiff drive reaches in a few
-/// passes.
-fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<(f64, DVector<f64>, f64), ArmError> {
+/// The arm at rest held by its actuator.
+struct Hold {
+    /// The hub's angle, rad.
+    angle_rad: f64,
+    /// The arm's deflection.
+    q: DVector<f64>,
+    /// The actuator's torque on the hub, N·m.
+    torque_n_m: f64,
+    /// The cylinders' moment arms on the deflected arm, m (none for a servo).
+    levers_m: Vec<f64>,
+}
+
+/// The hub's angle, the arm's deflection and the actuator's hub torque at rest with the
+/// actuator holding the arm: gravity on the hub balanced by the actuator, the arm deflected by
+/// gravity and by the cylinders' pin forces, the hub short of the reference by the drive's
+/// static lag. Each depends on the others: a fixed point a stiff drive reaches in a few passes.
+fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<Hold, ArmError> {
     let reference_rad = plant.reference.sample(0.0).angle_rad;
     let g = arm.options.gravity_m_s2;
     let n = arm.elastic_dofs();
-    let (mut angle, mut pin_load, mut load) = (reference_rad, DVector::zeros(n), 0.0);
+    let (mut angle, mut pin_load, mut torque, mut levers) = (reference_rad, DVector::zeros(n), 0.0, Vec::new());
     let mut q0 = DVector::zeros(n);
     for _ in 0..12 {
         q0 = arm.static_deflection_under(angle, &pin_load)?;
-        let torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
-        load = torque;
-        if let (Actuator::Hydraulic(h), Some(coupling)) = (&plant.actuator, &plant.arm_pin) {
-            let (zero, rows) = (vec![0.0; n], &coupling.rows);
-            let pin = ArmPin::at(&h.cylinder, coupling, (angle, 0.0), q0.as_slice(), &zero);
-            load = torque / pin.lever_m;
-            pin_load = load * (pin.body_unit[0] * &rows[0] + pin.body_unit[1] * &rows[1]);
+        torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
+        if let (Actuator::Hydraulic(h), Some(couplings)) = (&plant.actuator, &plant.arm_pins) {
+            let zero = vec![0.0; n];
+            let pins: Vec<ArmPin> = h
+                .cylinders
+                .each
+                .iter()
+                .zip(&couplings.rows)
+                .map(|(c, rows)| ArmPin::at(c, rows, (angle, 0.0), q0.as_slice(), &zero))
+                .collect();
+            levers = pins.iter().map(|p| p.lever_m).collect();
+            // Every chamber pair holds the same pressures (HydraulicDrive::holding_state); where
+            // they cannot, the actuator's holding says why.
+            let Ok(([p1, p2], _)) = h.holding_state(torque, &levers) else { break };
+            pin_load = DVector::zeros(n);
+            for ((pin, rows), c) in pins.iter().zip(&couplings.rows).zip(&h.cylinders.each) {
+                let force = p1 * c.cap_area_m2() - p2 * c.rod_area_m2();
+                pin_load += force * (pin.body_unit[0] * &rows[0] + pin.body_unit[1] * &rows[1]);
+            }
         }
-        angle = reference_rad - plant.static_lag_rad(load);
+        angle = reference_rad - plant.static_lag_rad(torque, &levers);
     }
-    Ok((angle, q0, load))
+    Ok(Hold { angle_rad: angle, q: q0, torque_n_m: torque, levers_m: levers })
 }

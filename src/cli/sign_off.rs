@@ -38,6 +38,9 @@ pub fn print(s: &RunSummary) {
         if let Some(base) = &pins.cylinder_base {
             print_pin("cylinder base pin", base);
         }
+        for (k, pin) in pins.cylinders.iter().enumerate() {
+            print_pin(&format!("cylinder {} pin", k + 1), pin);
+        }
         for hand in &pins.hands {
             println!(
                 "grip {:<14} peak {:.2} kN at {:.3} s, {:.2} kN·m at {:.3} s",

@@ -24,8 +24,10 @@ enum Source {
 enum ActuatorSignal {
     TrackingError,
     Command,
-    RodForce,
-    Pressure(usize),
+    /// Cylinder i's rod force.
+    RodForce(usize),
+    /// Cylinder i's pressure in chamber k (0 cap, 1 rod).
+    Pressure(usize, usize),
 }
 
 impl ActuatorSignal {
@@ -33,8 +35,8 @@ impl ActuatorSignal {
         match self {
             ActuatorSignal::TrackingError => o.tracking_error_rad,
             ActuatorSignal::Command => o.command,
-            ActuatorSignal::RodForce => o.rod_force_n.unwrap_or(f64::NAN),
-            ActuatorSignal::Pressure(k) => o.pressures_pa.map_or(f64::NAN, |p| p[k]),
+            ActuatorSignal::RodForce(i) => o.cylinders.get(i).map_or(f64::NAN, |c| c.rod_force_n),
+            ActuatorSignal::Pressure(i, k) => o.cylinders.get(i).map_or(f64::NAN, |c| c.pressures_pa[k]),
         }
     }
 }
@@ -102,27 +104,60 @@ pub fn signal_defs(model: &Model) -> Vec<SignalDef> {
         let entity = crate::record::force_entity(&dampener.name);
         defs.push(def(format!("contact_force.{}", dampener.name), "N", entity, 1.0, Source::ContactForce(pad)));
     }
-    defs.extend(actuator_defs(&model.drive.actuator).into_iter().map(|(name, unit, entity, scale, signal)| {
-        def(name.into(), unit, entity.into(), scale, Source::Actuator(signal))
-    }));
+    defs.extend(actuator_signal_defs(&model.drive.actuator));
     defs
 }
 
-/// The actuator's signals: (name, unit, plot, plot scale, output).
-fn actuator_defs(actuator: &Actuator) -> Vec<(&'static str, &'static str, &'static str, f64, ActuatorSignal)> {
-    let degrees = 180.0 / std::f64::consts::PI;
-    let mut defs = match actuator {
-        Actuator::Ideal => return Vec::new(),
-        Actuator::Servo(_) => vec![("actuator.command", "N*m", "plots/actuator/command", 1.0, ActuatorSignal::Command)],
-        Actuator::Hydraulic(_) => vec![
-            ("actuator.command", "1", "plots/actuator/command", 1.0, ActuatorSignal::Command),
-            ("actuator.rod_force", "N", "plots/actuator/rod_force", 1.0, ActuatorSignal::RodForce),
-            ("actuator.pressure.cap", "Pa", "plots/actuator/pressure/cap", 1.0, ActuatorSignal::Pressure(0)),
-            ("actuator.pressure.rod", "Pa", "plots/actuator/pressure/rod", 1.0, ActuatorSignal::Pressure(1)),
-        ],
+/// The actuator's signals, which the recording plots too: the tracking error and the
+/// controller's command; per cylinder its rod force and, per valve, its chamber pressures. A
+/// single cylinder's are `actuator.rod_force` and `actuator.pressure.<chamber>`; of several,
+/// cylinder k's (from 1, the URDF's order) are `actuator.rod_force.<k>` and
+/// `actuator.pressure.<k>.<chamber>` (on a shared valve the one pair, `actuator.pressure.<chamber>`).
+pub fn actuator_signal_defs(actuator: &Actuator) -> Vec<SignalDef> {
+    let def = |name: String, unit, entity: String, plot_scale, signal| SignalDef {
+        name,
+        unit,
+        entity,
+        plot_scale,
+        source: Source::Actuator(signal),
     };
-    let tracking =
-        ("actuator.tracking_error", "rad", "plots/actuator/tracking_error_deg", degrees, ActuatorSignal::TrackingError);
-    defs.insert(0, tracking);
-    defs
+    let degrees = 180.0 / std::f64::consts::PI;
+    let tracking = def(
+        "actuator.tracking_error".into(),
+        "rad",
+        "plots/actuator/tracking_error_deg".into(),
+        degrees,
+        ActuatorSignal::TrackingError,
+    );
+    let command =
+        |unit| def("actuator.command".into(), unit, "plots/actuator/command".into(), 1.0, ActuatorSignal::Command);
+    match actuator {
+        Actuator::Ideal => Vec::new(),
+        Actuator::Servo(_) => vec![tracking, command("N*m")],
+        Actuator::Hydraulic(h) => {
+            let mut defs = vec![tracking, command("1")];
+            let count = h.cylinders.each.len();
+            let number = |i: usize, count: usize| crate::actuator::cylinder_number(i, count);
+            let suffix = |i: usize| number(i, count).map_or(String::new(), |k| format!(".{k}"));
+            let path = |i: usize| number(i, count).map_or(String::new(), |k| format!("/{k}"));
+            for i in 0..count {
+                let (name, entity) =
+                    (format!("actuator.rod_force{}", suffix(i)), format!("plots/actuator/rod_force{}", path(i)));
+                defs.push(def(name, "N", entity, 1.0, ActuatorSignal::RodForce(i)));
+            }
+            let valves = h.cylinders.chambers();
+            for i in 0..valves {
+                let (suffix, path) = match number(i, valves) {
+                    None => (String::new(), String::new()),
+                    Some(_) => (suffix(i), path(i)),
+                };
+                for (k, chamber) in ["cap", "rod"].into_iter().enumerate() {
+                    let name = format!("actuator.pressure{suffix}.{chamber}");
+                    let entity = format!("plots/actuator/pressure{path}/{chamber}");
+                    defs.push(def(name, "Pa", entity, 1.0, ActuatorSignal::Pressure(i, k)));
+                }
+            }
+            defs
+        }
+    }
 }

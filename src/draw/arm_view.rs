@@ -103,7 +103,7 @@ fn extents(subject: &Subject) -> [f64; 4] {
         let [face, far] = pad_span_y_m(d, robot);
         b = union(b, [d.station_m - 0.5 * d.length_m, d.station_m + 0.5 * d.length_m, face.min(far), face.max(far)]);
     }
-    if let Some((cylinder, _)) = subject.cylinder() {
+    for (cylinder, _) in subject.cylinders() {
         b = grow(b, cylinder.arm_pin_m);
     }
     if let Some((_, station, _)) = subject.lumped_payload() {
@@ -135,7 +135,7 @@ fn stations(subject: &Subject) -> Vec<(f64, String)> {
     }
     items.extend(robot.carried.iter().map(|b| (b.station_m, b.name.clone())));
     items.extend(subject.dampeners().iter().map(|d| (d.station_m, d.name.clone())));
-    if let Some((cylinder, _)) = subject.cylinder() {
+    for (cylinder, _) in subject.cylinders() {
         items.push((cylinder.arm_pin_m[0], "cylinder arm pin".into()));
     }
     if let Some(held) = subject.string() {
@@ -372,7 +372,7 @@ fn pads<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &ArmPlan, subject: &Subje
 
 fn pin_and_payload<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &ArmPlan, subject: &Subject) -> Drawn {
     let v = &plan.view;
-    if let Some((cylinder, _)) = subject.cylinder() {
+    for (cylinder, _) in subject.cylinders() {
         let [x, y] = cylinder.arm_pin_m;
         let (pin, axis) = (v.px([x, y]), v.px([x, 0.0]));
         p.dashed(&[pin, axis], CYLINDER, 2)?;

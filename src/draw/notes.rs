@@ -9,6 +9,7 @@ use super::paint::{
     UPPER_FACE, degrees, font, metres, mm, trimmed,
 };
 use super::subject::Subject;
+use crate::actuator::Cylinder;
 use crate::contact::ForceLaw;
 use crate::model::{Payload, StructureShape};
 
@@ -113,16 +114,26 @@ fn facts(subject: &Subject) -> Vec<String> {
         ratios.join(", "),
         trimmed(arm.hub_inertia_kg_m2, 3)
     ));
-    facts.extend(cylinder_fact(subject));
+    facts.extend(cylinder_facts(subject));
     if let Some(model) = subject.model() {
         facts.extend(scene_facts(model));
     }
     facts
 }
 
-/// What the URDF says of the cylinder, and whether it drives the scene's lift.
-fn cylinder_fact(subject: &Subject) -> Option<String> {
-    let (c, drives) = subject.cylinder()?;
+/// What the URDF says of each cylinder, and whether it drives the scene's lift.
+fn cylinder_facts(subject: &Subject) -> Vec<String> {
+    let cylinders = subject.cylinders();
+    let count = cylinders.len();
+    let feed = subject.robot().lift.cylinders.as_ref().map(|c| c.feed.name()).unwrap_or_default();
+    let name = |k: usize| match count {
+        1 => "cylinder".to_string(),
+        _ => format!("cylinder {} of {count} (valve {feed})", k + 1),
+    };
+    cylinders.into_iter().enumerate().map(|(k, (c, drives))| cylinder_fact(&name(k), c, drives, subject)).collect()
+}
+
+fn cylinder_fact(name: &str, c: &Cylinder, drives: bool, subject: &Subject) -> String {
     let [bx, by] = c.base_pin_m;
     let [ax, ay] = c.arm_pin_m;
     let role = match subject.model() {
@@ -130,8 +141,8 @@ fn cylinder_fact(subject: &Subject) -> Option<String> {
         Some(_) => "; not this scenario's actuator",
         None => "",
     };
-    Some(format!(
-        "cylinder: bore {} mm, rod {} mm; closed {} m, stroke {} m; base pin ({}, {}) m from the pivot, arm pin ({}, {}) m in the arm frame{role}",
+    format!(
+        "{name}: bore {} mm, rod {} mm; closed {} m, stroke {} m; base pin ({}, {}) m from the pivot, arm pin ({}, {}) m in the arm frame{role}",
         mm(c.bore_m),
         mm(c.rod_m),
         metres(c.closed_length_m),
@@ -140,7 +151,7 @@ fn cylinder_fact(subject: &Subject) -> Option<String> {
         metres(by),
         metres(ax),
         metres(ay)
-    ))
+    )
 }
 
 /// What the scenario says of its drive, payload, pads and structures.

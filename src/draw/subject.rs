@@ -58,10 +58,10 @@ impl<'a> Subject<'a> {
         self.model().map_or(&[], |m| &m.structures)
     }
 
-    /// The URDF's cylinder, and whether it drives the scene's lift.
-    pub fn cylinder(&self) -> Option<(&'a Cylinder, bool)> {
+    /// The URDF's cylinders, each with whether it drives the scene's lift.
+    pub fn cylinders(&self) -> Vec<(&'a Cylinder, bool)> {
         let drives = self.model().is_some_and(|m| matches!(m.drive.actuator, Actuator::Hydraulic(_)));
-        self.robot().lift.cylinder.as_ref().map(|c| (c, drives))
+        self.robot().lift.cylinders.iter().flat_map(|c| &c.each).map(|c| (c, drives)).collect()
     }
 
     /// The drive's start and end angles, or the lift joint's limits for a robot alone.

@@ -12,6 +12,7 @@ use super::paint::{
     STRUCTURE, UPPER_FACE, View, degrees, font, metres, mm, trimmed,
 };
 use super::subject::{Lift, Subject, pad_span_y_m};
+use crate::actuator::Cylinder;
 use crate::model::{Dampener, StructureShape};
 use crate::robot::section_extent;
 
@@ -148,7 +149,7 @@ fn extents(subject: &Subject, poses: &[(f64, Stroke)]) -> [f64; 4] {
     for k in 0..=32 {
         b = grow(b, add(pivot, rotate([radius, 0.0], lift.from_rad + sweep * k as f64 / 32.0)));
     }
-    if let Some((cylinder, _)) = subject.cylinder() {
+    for (cylinder, _) in subject.cylinders() {
         b = grow(b, add(pivot, cylinder.base_pin_m));
         for (angle, _) in poses {
             b = grow(b, add(pivot, cylinder.arm_pin_at_m(*angle)));
@@ -186,7 +187,9 @@ pub fn draw<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &WorldPlan, subject: 
     labels.extend(lift_arc(p, plan, subject)?);
     labels.extend(pads(p, plan, subject)?);
     labels.extend(structures(p, plan, subject)?);
-    labels.extend(cylinder(p, plan, subject)?);
+    for (k, (c, drives)) in subject.cylinders().into_iter().enumerate() {
+        labels.extend(cylinder(p, plan, subject, (c, drives, k))?);
+    }
     scale_bar(p, plan)?;
     for (text, at, colour) in labels {
         p.label(&text, Some(at), &plan.slots(at), colour, plan.rect)?;
@@ -308,12 +311,15 @@ fn pads<DB: DrawingBackend>(p: &mut Painter<DB>, plan: &WorldPlan, subject: &Sub
     Ok(labels)
 }
 
+/// Cylinder `k` (from 0) of the URDF, drawn between its pins at each pose; `drives` whether it
+/// drives the scene's lift.
 fn cylinder<DB: DrawingBackend>(
     p: &mut Painter<DB>,
     plan: &WorldPlan,
     subject: &Subject,
+    (cylinder, drives, k): (&Cylinder, bool, usize),
 ) -> Result<Vec<Pending>, String> {
-    let Some((cylinder, drives)) = subject.cylinder() else { return Ok(Vec::new()) };
+    let count = subject.cylinders().len();
     let v = &plan.view;
     let robot = subject.robot();
     let pivot = [robot.lift.pivot_m[0], robot.lift.pivot_m[1]];
@@ -335,8 +341,9 @@ fn cylinder<DB: DrawingBackend>(
         (Subject::Scene(_), true) => ", drives the lift",
         (Subject::Scene(_), false) => " (not this scenario's actuator)",
     };
+    let name = if count == 1 { "cylinder".to_string() } else { format!("cylinder {} of {count}", k + 1) };
     let text = format!(
-        "cylinder Ø{}/{} mm{role}: pins {} m apart at {}, {} m at {}",
+        "{name} Ø{}/{} mm{role}: pins {} m apart at {}, {} m at {}",
         mm(cylinder.bore_m),
         mm(cylinder.rod_m),
         metres(from),

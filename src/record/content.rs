@@ -147,14 +147,8 @@ impl Writer<'_> {
         }
         let reference = s.hub_angle_rad.iter().zip(outputs).map(|(a, o)| (a + o.tracking_error_rad).to_degrees());
         self.send("plots/hub/reference_deg", reference)?;
-        self.send("plots/actuator/tracking_error_deg", outputs.iter().map(|o| o.tracking_error_rad.to_degrees()))?;
-        self.send("plots/actuator/command", outputs.iter().map(|o| o.command))?;
-        if outputs[0].rod_force_n.is_some() {
-            self.send("plots/actuator/rod_force", outputs.iter().map(|o| o.rod_force_n.unwrap_or(f64::NAN)))?;
-            for (k, chamber) in ["cap", "rod"].into_iter().enumerate() {
-                let pressures = outputs.iter().map(|o| o.pressures_pa.map_or(f64::NAN, |p| p[k]));
-                self.send(&format!("plots/actuator/pressure/{chamber}"), pressures)?;
-            }
+        for signal in &s.actuator_signals {
+            self.send(&signal.entity, signal.values(s).into_iter().map(|v| v * signal.plot_scale))?;
         }
         Ok(())
     }
@@ -247,8 +241,8 @@ impl Writer<'_> {
             .with_vectors(vectors)
             .columns(frames.iter().map(|f| f.contacts.len()))?;
         self.send_columns(arrows, times(), columns)?;
-        if let Some(cylinder) = &layout.cylinder {
-            self.cylinder(cylinder, layout.pivot_m)?;
+        if !layout.cylinders.is_empty() {
+            self.cylinders(&layout.cylinders, layout.pivot_m)?;
         }
         self.structures(layout)?;
         Ok(note)
@@ -284,38 +278,41 @@ impl Writer<'_> {
         Ok(())
     }
 
-    /// The lift cylinder between its pins, per frame: barrel (bore) from the base pin, rod from
-    /// the arm pin, in the lift plane.
-    fn cylinder(&mut self, c: &crate::actuator::Cylinder, pivot_m: [f64; 3]) -> RecordingStreamResult<()> {
+    /// The lift cylinders between their pins, per frame: barrel (bore) from the base pin, rod
+    /// from the arm pin, in the lift plane; two strips per cylinder in one entity.
+    fn cylinders(&mut self, cylinders: &[crate::actuator::Cylinder], pivot_m: [f64; 3]) -> RecordingStreamResult<()> {
         let frames = &self.run.series.frames;
         let times = TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
         let point = |p: [f64; 2]| [(pivot_m[0] + p[0]) as f32, (pivot_m[1] + p[1]) as f32, pivot_m[2] as f32];
-        let strips: Vec<Vec<[f32; 3]>> = frames
-            .iter()
-            .flat_map(|f| {
-                let (base, pin) = (c.base_pin_m, c.arm_pin_at_m(f.hub_angle_rad));
-                let length = (pin[0] - base[0]).hypot(pin[1] - base[1]);
-                let along = |from: [f64; 2], to: [f64; 2], d: f64| {
-                    [from[0] + d / length * (to[0] - from[0]), from[1] + d / length * (to[1] - from[1])]
-                };
-                let barrel_end = along(base, pin, (0.9 * c.closed_length_m).min(length));
-                [vec![point(base), point(barrel_end)], vec![point(along(barrel_end, base, 0.1)), point(pin)]]
-            })
-            .collect();
+        let strips_of = |c: &crate::actuator::Cylinder, angle_rad: f64| {
+            let (base, pin) = (c.base_pin_m, c.arm_pin_at_m(angle_rad));
+            let length = (pin[0] - base[0]).hypot(pin[1] - base[1]);
+            let along = |from: [f64; 2], to: [f64; 2], d: f64| {
+                [from[0] + d / length * (to[0] - from[0]), from[1] + d / length * (to[1] - from[1])]
+            };
+            let barrel_end = along(base, pin, (0.9 * c.closed_length_m).min(length));
+            [vec![point(base), point(barrel_end)], vec![point(along(barrel_end, base, 0.1)), point(pin)]]
+        };
+        let strips: Vec<Vec<[f32; 3]>> =
+            frames.iter().flat_map(|f| cylinders.iter().flat_map(move |c| strips_of(c, f.hub_angle_rad))).collect();
         let radii = frames
             .iter()
-            .flat_map(|_| [0.5 * c.bore_m as f32 + 0.01, 0.5 * c.rod_m as f32])
+            .flat_map(|_| cylinders.iter().flat_map(|c| [0.5 * c.bore_m as f32 + 0.01, 0.5 * c.rod_m as f32]))
             .map(rerun::Radius::new_scene_units)
             .collect::<Vec<_>>();
         let colors = frames
             .iter()
-            .flat_map(|_| [rerun::Color::from_rgb(200, 160, 40), rerun::Color::from_rgb(210, 210, 220)])
+            .flat_map(|_| {
+                cylinders
+                    .iter()
+                    .flat_map(|_| [rerun::Color::from_rgb(200, 160, 40), rerun::Color::from_rgb(210, 210, 220)])
+            })
             .collect::<Vec<_>>();
         let columns = rerun::LineStrips3D::update_fields()
             .with_strips(strips)
             .with_radii(radii)
             .with_colors(colors)
-            .columns(std::iter::repeat_n(2, frames.len()))?;
+            .columns(std::iter::repeat_n(2 * cylinders.len(), frames.len()))?;
         self.send_columns("world/cylinder", times, columns)
     }
 

@@ -105,7 +105,7 @@ impl ActuatorViews {
     pub fn of(outputs: &[crate::actuator::ActuatorOutputs]) -> Self {
         match outputs.first() {
             None => ActuatorViews::None,
-            Some(o) if o.pressures_pa.is_some() => ActuatorViews::TrackingAndPressures,
+            Some(o) if !o.cylinders.is_empty() => ActuatorViews::TrackingAndPressures,
             Some(_) => ActuatorViews::Tracking,
         }
     }

@@ -297,8 +297,11 @@ impl Writer<'_> {
             }
         };
         self.send_kept(PIVOT_ENTITY, magnitude(series.pivot_index))?;
-        if let Some(at) = series.cylinder_index {
-            self.send_kept("plots/pins/cylinder", magnitude(at))?;
+        let count = series.cylinder_indices.len();
+        for (k, at) in series.cylinder_indices.iter().enumerate() {
+            let entity = crate::actuator::cylinder_number(k, count)
+                .map_or("plots/pins/cylinder".to_string(), |n| format!("plots/pins/cylinder/{n}"));
+            self.send_kept(&entity, magnitude(*at))?;
         }
         for (hand, at) in &series.hands {
             self.send_kept(&format!("plots/pins/hands/{hand}"), magnitude(*at))?;

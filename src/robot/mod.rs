@@ -175,10 +175,19 @@ pub struct LiftJoint {
     /// Fastest rate the drive can turn the joint, rad/s (the URDF limit's velocity): a scenario
     /// whose drive is faster is refused.
     pub velocity_rad_s: f64,
-    /// The hydraulic cylinder that can turn it (`<pipearm:cylinder>` on the joint).
-    pub cylinder: Option<crate::actuator::Cylinder>,
+    /// The hydraulic cylinders that can turn it (the `<pipearm:cylinder>` elements on the joint).
+    pub cylinders: Option<crate::actuator::Cylinders>,
     /// The servo motor and gearbox that can turn it (`<pipearm:servo>` on the joint).
     pub servo: Option<crate::actuator::ServoMachine>,
+}
+
+/// How errors and drawings name cylinder `k` (from 0) of the `count` on joint `joint`:
+/// `joint[<joint>].pipearm:cylinder`, or `…pipearm:cylinder[<k + 1>]` among several.
+pub fn cylinder_element(joint: &str, k: usize, count: usize) -> String {
+    match count {
+        1 => format!("joint[{joint}].pipearm:cylinder"),
+        _ => format!("joint[{joint}].pipearm:cylinder[{}]", k + 1),
+    }
 }
 
 /// A robot read from URDF.

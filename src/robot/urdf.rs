@@ -11,6 +11,8 @@
 //!     <pipearm:cylinder base_pin_m="0.4 -0.5" arm_pin_m="2.0 -0.7" bore_m="0.18" rod_m="0.10"
 //!                       closed_length_m="1.56" stroke_m="1.0"
 //!                       cap_dead_volume_m3="1.65e-3" rod_dead_volume_m3="1.45e-3"/>
+//!     <!-- more cylinders on the joint: each with `valve="shared"` (the default: one valve,
+//!          chambers joined) or all with `valve="own"` (one valve each) -->
 //!     <pipearm:servo gear_ratio="1000" rotor_inertia_kg_m2="0.025" stiffness_n_m_per_rad="3e7"
 //!                    damping_n_m_s_per_rad="5e4" torque_limit_n_m="160" speed_limit_rad_s="314.16"/>
 //!   </joint>
@@ -29,7 +31,7 @@ use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 
 use super::SegmentChecks;
 use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
-use crate::actuator::{Cylinder, ServoMachine};
+use crate::actuator::{Cylinder, Cylinders, ServoMachine, ValveFeed};
 use crate::beam::{BeamModel, Material, SectionShape};
 
 /// A segment's optional sign-off attributes: yield strength or steel grade, detail or curve.
@@ -50,7 +52,7 @@ pub fn load_robot(path: &Path) -> Result<Robot, RobotError> {
     let ctx = Context { path };
     let arm = ctx.flexible_link(&doc)?;
     let mut lift = ctx.lift_joint(&urdf, &arm.name)?;
-    (lift.0.cylinder, lift.0.servo) = ctx.lift_machines(&doc, &lift.0.name)?;
+    (lift.0.cylinders, lift.0.servo) = ctx.lift_machines(&doc, &lift.0.name)?;
     let carried = ctx.carried_bodies(&urdf, &arm)?;
     let base_shapes = urdf
         .links
@@ -285,31 +287,54 @@ impl Context<'_> {
             limits_rad: (lower, upper),
             effort_n_m: effort,
             velocity_rad_s: velocity,
-            cylinder: None,
+            cylinders: None,
             servo: None,
         };
         Ok((lift, joint.parent.link.clone()))
     }
 
-    /// The machines that can turn the lift joint: at most one `<pipearm:cylinder>` and one
-    /// `<pipearm:servo>` among the joint's children, no other pipearm element there.
+    /// The machines that can turn the lift joint: any number of `<pipearm:cylinder>` (their
+    /// `valve` attributes agreeing) and at most one `<pipearm:servo>` among the joint's children,
+    /// no other pipearm element there.
     fn lift_machines(
         &self,
         doc: &roxmltree::Document<'_>,
         joint: &str,
-    ) -> Result<(Option<Cylinder>, Option<ServoMachine>), RobotError> {
+    ) -> Result<(Option<Cylinders>, Option<ServoMachine>), RobotError> {
         let key = format!("joint[{joint}]");
         let node =
             doc.root_element().children().find(|n| n.has_tag_name("joint") && n.attribute("name") == Some(joint));
-        let (mut cylinder, mut servo) = (None, None);
-        let ours = node.iter().flat_map(|n| n.children()).filter(|c| c.tag_name().namespace() == Some(PIPEARM_NS));
+        let ours: Vec<_> =
+            node.iter().flat_map(|n| n.children()).filter(|c| c.tag_name().namespace() == Some(PIPEARM_NS)).collect();
+        let count = ours.iter().filter(|c| c.tag_name().name() == "cylinder").count();
+        let (mut cylinders, mut servo): (Option<Cylinders>, _) = (None, None);
         for child in ours {
             let name = child.tag_name().name();
-            let child_key = format!("{key}.pipearm:{name}");
             match name {
-                "cylinder" if cylinder.is_none() => cylinder = Some(self.cylinder(&child, &child_key)?),
-                "servo" if servo.is_none() => servo = Some(self.servo(&child, &child_key)?),
-                "cylinder" | "servo" => return Err(self.invalid(child_key, "given twice: allowed one per joint")),
+                "cylinder" => {
+                    let index = cylinders.as_ref().map_or(0, |c| c.each.len());
+                    let child_key = super::cylinder_element(joint, index, count);
+                    let (cylinder, feed) = self.cylinder(&child, &child_key)?;
+                    match &mut cylinders {
+                        None => cylinders = Some(Cylinders { each: vec![cylinder], feed }),
+                        Some(c) if c.feed == feed => c.each.push(cylinder),
+                        Some(c) => {
+                            return Err(self.invalid(
+                                format!("{child_key}@valve"),
+                                format!(
+                                    "\"{}\" where the first cylinder's is \"{}\": allowed one feed for all of a \
+                                     joint's cylinders, \"shared\" (one valve) or \"own\" (one valve each)",
+                                    feed.name(),
+                                    c.feed.name()
+                                ),
+                            ));
+                        }
+                    }
+                }
+                "servo" if servo.is_none() => servo = Some(self.servo(&child, &format!("{key}.pipearm:servo"))?),
+                "servo" => {
+                    return Err(self.invalid(format!("{key}.pipearm:servo"), "given twice: allowed one per joint"));
+                }
                 _ => {
                     return Err(self.invalid(
                         &key,
@@ -318,11 +343,12 @@ impl Context<'_> {
                 }
             }
         }
-        Ok((cylinder, servo))
+        Ok((cylinders, servo))
     }
 
-    /// `<pipearm:cylinder>`: pins, bore and rod, lengths and dead volumes ([`Cylinder`]).
-    fn cylinder(&self, node: &roxmltree::Node<'_, '_>, key: &str) -> Result<Cylinder, RobotError> {
+    /// `<pipearm:cylinder>`: pins, bore and rod, lengths and dead volumes ([`Cylinder`]), and
+    /// how its valve feeds it (`valve`, optional: `shared`, the default, or `own`).
+    fn cylinder(&self, node: &roxmltree::Node<'_, '_>, key: &str) -> Result<(Cylinder, ValveFeed), RobotError> {
         self.only_attributes(
             node,
             key,
@@ -335,8 +361,21 @@ impl Context<'_> {
                 "stroke_m",
                 "cap_dead_volume_m3",
                 "rod_dead_volume_m3",
+                "valve",
             ],
         )?;
+        let feed = match node.attribute("valve") {
+            None | Some("shared") => ValveFeed::Shared,
+            Some("own") => ValveFeed::Own,
+            Some(other) => {
+                return Err(self.invalid(
+                    format!("{key}@valve"),
+                    format!(
+                        "\"{other}\": allowed \"shared\" (one valve for the joint's cylinders) or \"own\" (one each)"
+                    ),
+                ));
+            }
+        };
         let positive = |name| self.positive(node, key, name);
         let cylinder = Cylinder {
             base_pin_m: self.pin(node, key, "base_pin_m")?,
@@ -368,7 +407,7 @@ impl Context<'_> {
         if c.arm_pin_m == [0.0, 0.0] {
             return Err(self.invalid(format!("{key}@arm_pin_m"), "at the pivot: the cylinder would have no lever"));
         }
-        Ok(cylinder)
+        Ok((cylinder, feed))
     }
 
     /// `<pipearm:servo>`: gearbox, rotor, drive train and the motor's limits ([`ServoMachine`]).

@@ -92,8 +92,8 @@ impl Check<'_> {
                 valve,
                 controller,
             } => {
-                let cylinder =
-                    robot.lift.cylinder.ok_or_else(|| self.missing_machine(robot, "hydraulic", "cylinder"))?;
+                let cylinders =
+                    robot.lift.cylinders.clone().ok_or_else(|| self.missing_machine(robot, "hydraulic", "cylinder"))?;
                 let circuit = HydraulicCircuit {
                     supply_pressure_pa,
                     tank_pressure_pa,
@@ -102,7 +102,7 @@ impl Check<'_> {
                     valve,
                 };
                 self.circuit(&circuit)?;
-                Actuator::Hydraulic(HydraulicDrive { cylinder, circuit, controller: self.controller(controller)? })
+                Actuator::Hydraulic(HydraulicDrive { cylinders, circuit, controller: self.controller(controller)? })
             }
         })
     }
@@ -215,7 +215,12 @@ impl Check<'_> {
         match actuator {
             Actuator::Ideal => {}
             Actuator::Servo(servo) => self.servo_speed(model, servo)?,
-            Actuator::Hydraulic(drive) => self.cylinder_on_path(model, &drive.cylinder)?,
+            Actuator::Hydraulic(drive) => {
+                for (k, cylinder) in drive.cylinders.each.iter().enumerate() {
+                    let element = crate::robot::cylinder_element(&model.robot.lift.name, k, drive.cylinders.each.len());
+                    self.cylinder_on_path(model, cylinder, &element)?;
+                }
+            }
         }
         self.closed_loop_on_path(model)
     }
@@ -340,8 +345,9 @@ impl Check<'_> {
     }
 
     /// The cylinder's pin-to-pin length within [closed, closed + stroke] and its moment arm
-    /// positive (it extends as the arm lifts) at every angle the drive's reference passes.
-    fn cylinder_on_path(&self, model: &Model, cylinder: &Cylinder) -> Result<(), ScenarioError> {
+    /// positive (it extends as the arm lifts) at every angle the drive's reference passes;
+    /// `element` names it in the URDF.
+    fn cylinder_on_path(&self, model: &Model, cylinder: &Cylinder, element: &str) -> Result<(), ScenarioError> {
         let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());
         let angles = (0..=PATH_SAMPLES).map(|i| lo + (hi - lo) * i as f64 / PATH_SAMPLES as f64);
         let samples: Vec<(f64, f64, f64)> = angles
@@ -357,11 +363,10 @@ impl Check<'_> {
         let (closed, open) = (cylinder.closed_length_m, cylinder.closed_length_m + cylinder.stroke_m);
         let deg = f64::to_degrees;
         let place = format!(
-            "on the drive's path ({:.2} ..= {:.2} deg) the cylinder of {} (joint[{}].pipearm:cylinder)",
+            "on the drive's path ({:.2} ..= {:.2} deg) the cylinder of {} ({element})",
             deg(lo),
             deg(hi),
             model.robot.source.display(),
-            model.robot.lift.name
         );
         let stroke = format!(
             "allowed pin-to-pin lengths closed_length_m ..= closed_length_m + stroke_m ({closed} ..= {open} m) \
@@ -490,7 +495,7 @@ mod tests {
         assert_eq!(toml::from_str::<ScenarioSpec>(&canonical).unwrap(), spec, "{canonical}");
         let scenario = Scenario::from_spec(&default_path(), spec).unwrap();
         let Actuator::Hydraulic(drive) = &scenario.model.drive.actuator else { panic!("not hydraulic") };
-        assert_eq!(Some(drive.cylinder), scenario.model.robot.lift.cylinder);
+        assert_eq!(Some(&drive.cylinders), scenario.model.robot.lift.cylinders.as_ref());
         assert_eq!((drive.circuit.supply_pressure_pa, drive.circuit.tank_pressure_pa), (21e6, 5e5));
         assert_eq!((drive.controller.kp, drive.controller.ki, drive.controller.rate_hz), (5.0, 0.0, Some(250.0)));
     }

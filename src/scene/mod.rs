@@ -329,9 +329,9 @@ impl Scene {
             pivot_m: self.pivot_m,
             length_m: self.arm.arm.length_m(),
             string_normal_offset_m: self.string_normal_offset_m,
-            cylinder: match self.arm.drive.plant().map(|p| &p.actuator) {
-                Some(crate::actuator::Actuator::Hydraulic(h)) => Some(h.cylinder),
-                _ => None,
+            cylinders: match self.arm.drive.plant().map(|p| &p.actuator) {
+                Some(crate::actuator::Actuator::Hydraulic(h)) => h.cylinders.each.clone(),
+                _ => Vec::new(),
             },
         }
     }
@@ -426,8 +426,8 @@ pub struct SceneLayout {
     pub length_m: f64,
     /// A held string's axis off the lift plane, m.
     pub string_normal_offset_m: f64,
-    /// The hydraulic cylinder that drives the hub, if one does.
-    pub cylinder: Option<crate::actuator::Cylinder>,
+    /// The hydraulic cylinders that drive the hub, if any do.
+    pub cylinders: Vec<crate::actuator::Cylinder>,
 }
 
 /// The scene at one instant, for drawing.

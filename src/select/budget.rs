@@ -73,7 +73,7 @@ impl TruncationBound {
         // The scene's own loads, scaled to what the scene applies (gravity in m/s², the hub's
         // peak acceleration in rad/s²): their static tip deflections are in metres.
         let loads = match &model.drive.actuator {
-            Actuator::Hydraulic(h) => held_at_the_pin(model, beam, &h.cylinder),
+            Actuator::Hydraulic(h) => held_at_the_pins(model, beam, &h.cylinders),
             _ => held_at_the_hub(model, beam),
         };
         let tip_modal = modes.shapes.tr_mul(&tip);
@@ -230,25 +230,30 @@ fn gravity_at(model: &Model, beam: &BeamModel, angle: f64) -> nalgebra::DVector<
     -model.physics.gravity_m_s2 * (s * &beam.axial_mass + c * &beam.transverse_mass)
 }
 
-/// The scene's loads on an arm a cylinder holds, at the drive's start and end angles: gravity
-/// and the hub's acceleration, each with the cylinder's push that carries its moment about the
-/// hub. The cylinder holds the arm at its pin, not at the hub, and pushes mostly along the arm
+/// The scene's loads on an arm cylinders hold, at the drive's start and end angles: gravity
+/// and the hub's acceleration, each with the cylinders' push that carries its moment about the
+/// hub. A cylinder holds the arm at its pin, not at the hub, and pushes mostly along the arm
 /// at the pin's offset: the push bends the arm against the load, the two cancel in part at the
-/// tip, and the truncation's share of what is left is the larger.
-fn held_at_the_pin(model: &Model, beam: &BeamModel, cylinder: &crate::actuator::Cylinder) -> Vec<Load> {
+/// tip, and the truncation's share of what is left is the larger. Several cylinders share the
+/// moment as their pressures do: each pushes in proportion to its cap area.
+fn held_at_the_pins(model: &Model, beam: &BeamModel, cylinders: &crate::actuator::Cylinders) -> Vec<Load> {
     let rotation = beam.arm_ride() * rigid_rotation(beam);
-    let [x, y] = cylinder.arm_pin_m;
-    let [u, v, slope] = beam.point_rows(x);
     let [start, end, peak] = judged_states(model);
     let mut loads = Vec::new();
     for at in [start, end] {
         let angle = at.angle_rad;
-        let pin = cylinder.arm_pin_at_m(angle);
-        let (dx, dy) = (pin[0] - cylinder.base_pin_m[0], pin[1] - cylinder.base_pin_m[1]);
-        // The push's direction in the hub frame.
         let (s, c) = angle.sin_cos();
-        let (along, across) = (c * dx + s * dy, -s * dx + c * dy);
-        let push = along * (&u - y * &slope) + across * &v;
+        let mut push = nalgebra::DVector::zeros(rotation.len());
+        for cylinder in &cylinders.each {
+            let [x, y] = cylinder.arm_pin_m;
+            let [u, v, slope] = beam.point_rows(x);
+            let pin = cylinder.arm_pin_at_m(angle);
+            let (dx, dy) = (pin[0] - cylinder.base_pin_m[0], pin[1] - cylinder.base_pin_m[1]);
+            // The push's direction in the hub frame, per unit length of the cylinder.
+            let length = dx.hypot(dy);
+            let (along, across) = ((c * dx + s * dy) / length, (-s * dx + c * dy) / length);
+            push += cylinder.cap_area_m2() * (along * (&u - y * &slope) + across * &v);
+        }
         let lever = rotation.dot(&push);
         let deg = angle.to_degrees();
         let accel = peak.accel_rad_s2.abs() * &beam.coupling;
@@ -257,7 +262,8 @@ fn held_at_the_pin(model: &Model, beam: &BeamModel, cylinder: &crate::actuator::
             (format!("the hub's peak acceleration at {deg:.0}°"), accel, peak.rate_rad_s),
         ] {
             let held = &load - (rotation.dot(&load) / lever) * &push;
-            loads.push(Load { name: format!("{name} held at the cylinder's pin"), vector: held, rate_rad_s: rate });
+            let pins = if cylinders.each.len() == 1 { "the cylinder's pin" } else { "the cylinders' pins" };
+            loads.push(Load { name: format!("{name} held at {pins}"), vector: held, rate_rad_s: rate });
         }
     }
     loads

@@ -28,8 +28,8 @@ pub(super) struct Recorded {
     hubs: Vec<(DriveState, (f64, f64))>,
     /// Per step: q, q̇, q̈.
     elastic: Vec<f64>,
-    /// Per step: the cylinder pin's force on the arm, world X, Y, N.
-    pins: Vec<[f64; 2]>,
+    /// Per step: each cylinder pin's force on the arm, world X, Y, N, one step after another.
+    pins: Vec<f64>,
     /// The steps' point loads: the step in the chunk, whether on the held string, the load.
     loads: Vec<(usize, bool, PointLoad<Hub>)>,
 }
@@ -41,20 +41,20 @@ impl Recorded {
     }
 
     /// Records a step: `state`, its hub angle's `sin_cos`, the point loads on the arm `on_arm`
-    /// and on the string `on_string`, the cylinder pin's force `pin_world_n`.
+    /// and on the string `on_string`, each cylinder pin's force `pins_world_n`.
     pub fn push(
         &mut self,
         state: &ArmState,
         sin_cos: (f64, f64),
         (on_arm, on_string): (&[PointLoad<Hub>], &[PointLoad<Hub>]),
-        pin_world_n: [f64; 2],
+        pins_world_n: &[[f64; 2]],
     ) {
         let k = self.steps();
         self.hubs.push((state.hub, sin_cos));
         for v in [state.q, state.qd, state.qdd] {
             self.elastic.extend_from_slice(v.as_slice());
         }
-        self.pins.push(pin_world_n);
+        self.pins.extend(pins_world_n.iter().flatten());
         self.loads.extend(on_arm.iter().map(|l| (k, false, *l)).chain(on_string.iter().map(|l| (k, true, *l))));
     }
 
@@ -79,7 +79,7 @@ pub(super) struct Evaluated {
 pub(super) struct Completer {
     recovery: Arc<SectionRecovery>,
     g: f64,
-    /// Values a step: the recovery's, then the cylinder pin's.
+    /// Values a step: the recovery's, then the cylinder pins'.
     stride: usize,
     scratch: Scratch,
     values: Vec<f64>,
@@ -126,7 +126,8 @@ impl Completer {
             let [q, qd, qdd] = &*elastic;
             let state = ArmState { hub: *hub, q, qd, qdd };
             recovery.stage(&state, *sin_cos, *g, on_arm, on_string, scratch, &mut values[start..]);
-            values.extend_from_slice(&recorded.pins[k]);
+            let pins = *stride - recovery.width();
+            values.extend_from_slice(&recorded.pins[pins * k..pins * (k + 1)]);
         }
         recovery.flush(scratch, values, *stride);
         let count = recovery.stations.len();

@@ -16,7 +16,9 @@ pub mod summary;
 
 use std::sync::Arc;
 
-use crate::actuator::{Actuator, Cylinder, PinCoupling};
+use nalgebra::DVector;
+
+use crate::actuator::{Actuator, Cylinder};
 use crate::arm::{ArmModel, ArmSample};
 use crate::model::Model;
 use crate::point_load::{Hub, PointLoad, World};
@@ -36,7 +38,9 @@ pub struct StressProbe {
     pub recovery: Arc<SectionRecovery>,
     /// The outer fibres of each station's section.
     pub fibres: Vec<Fibres>,
-    cylinder: Option<(Cylinder, PinCoupling)>,
+    /// Each cylinder and its pin's rows over q.
+    cylinders: Vec<(Cylinder, [DVector<f64>; 2])>,
+    pins_world_n: Vec<[f64; 2]>,
     recorded: beside::Recorded,
     on_arm: Vec<PointLoad<Hub>>,
     on_string: Vec<PointLoad<Hub>>,
@@ -48,7 +52,7 @@ pub struct StressProbe {
     worker_tried: bool,
 }
 
-/// Values per step after the recovery's: the cylinder pin's force on the arm, world X, Y, N.
+/// Values per step and cylinder after the recovery's: its pin's force on the arm, world X, Y, N.
 pub const CYLINDER_VALUES: usize = 2;
 
 /// A station of a run's stress series: where, on which segment, and its fibres.
@@ -68,7 +72,7 @@ pub struct StressSeries {
     /// `width` values per step, one step after another: the axial force of each station (N),
     /// then the bending moment of each (N·m), the pivot's force on the arm (hub frame, N), per
     /// hand of the held string its load on the hand (hub frame x, y, N; moment, N·m), the
-    /// cylinder pin's force (world, N). Read a station's through [`Self::section_forces`].
+    /// cylinder pins' forces (world, N). Read a station's through [`Self::section_forces`].
     /// Single precision (seven digits): a run's histories at every section are its largest
     /// series, and the extremes are taken in double precision as they are read.
     pub values: Vec<f32>,
@@ -80,8 +84,8 @@ pub struct StressSeries {
     pub pivot_index: usize,
     /// Each hand of the held string and where its load starts.
     pub hands: Vec<(String, usize)>,
-    /// Where the cylinder pin's force starts (`None` without a cylinder).
-    pub cylinder_index: Option<usize>,
+    /// Where each cylinder pin's force starts (none without cylinders).
+    pub cylinder_indices: Vec<usize>,
     running: RunningExtremes,
 }
 
@@ -197,17 +201,21 @@ impl StressProbe {
                 end
             })
             .collect();
-        let cylinder = scene.arm.drive.plant().and_then(|plant| match (&plant.actuator, &plant.arm_pin) {
-            (Actuator::Hydraulic(h), Some(coupling)) => Some((h.cylinder, coupling.clone())),
-            _ => None,
-        });
-        let pin_station: Vec<f64> = cylinder.iter().map(|(c, _)| c.arm_pin_m[0]).collect();
+        let cylinders: Vec<(Cylinder, [DVector<f64>; 2])> =
+            scene.arm.drive.plant().map_or(Vec::new(), |plant| match (&plant.actuator, &plant.arm_pins) {
+                (Actuator::Hydraulic(h), Some(couplings)) => {
+                    h.cylinders.each.iter().copied().zip(couplings.rows.iter().cloned()).collect()
+                }
+                _ => Vec::new(),
+            });
+        let pin_station: Vec<f64> = cylinders.iter().map(|(c, _)| c.arm_pin_m[0]).collect();
         let stations = recovery::stations_of(arm, &segment_ends, &pin_station);
         let fibres = stations.iter().map(|s| Fibres::of(&segments[s.segment].section)).collect();
         StressProbe {
             recovery: Arc::new(SectionRecovery::new(arm, stations, model.payload.string())),
             fibres,
-            cylinder,
+            cylinders,
+            pins_world_n: Vec::new(),
             recorded: beside::Recorded::default(),
             on_arm: Vec::new(),
             on_string: Vec::new(),
@@ -218,9 +226,9 @@ impl StressProbe {
         }
     }
 
-    /// Values per step: the recovery's, then the cylinder pin's.
+    /// Values per step: the recovery's, then the cylinder pins'.
     pub fn width(&self) -> usize {
-        self.recovery.width() + CYLINDER_VALUES
+        self.recovery.width() + CYLINDER_VALUES * self.cylinders.len()
     }
 
     /// The probe of a run of `model` in `scene` of `steps` steps, its readings to go in `series`.
@@ -249,7 +257,7 @@ impl StressProbe {
             hands: (0..self.recovery.hand_count())
                 .map(|h| (hands.get(h).cloned().unwrap_or_else(|| format!("hand {h}")), self.recovery.hand_index(h)))
                 .collect(),
-            cylinder_index: self.cylinder.is_some().then(|| self.recovery.width()),
+            cylinder_indices: (0..self.cylinders.len()).map(|i| self.recovery.width() + CYLINDER_VALUES * i).collect(),
             running: RunningExtremes::new(&stations),
             stations,
         }
@@ -271,27 +279,21 @@ impl StressProbe {
                 PairSide::String => self.on_string.push(load),
             }
         }
-        let mut pin_world = [0.0; 2];
-        if let (Some((cylinder, coupling)), Some(rod_force_n)) =
-            (&self.cylinder, sample.actuator.and_then(|a| a.rod_force_n))
-        {
-            let pin = crate::arm::ArmPin::at(
-                cylinder,
-                coupling,
-                (hub.angle_rad, hub.rate_rad_s),
-                q.as_slice(),
-                qd.as_slice(),
-            );
-            let rows = &coupling.rows;
+        self.pins_world_n.clear();
+        let readings = sample.actuator.as_ref().map_or(&[][..], |a| &a.cylinders[..]);
+        for (i, (cylinder, rows)) in self.cylinders.iter().enumerate() {
+            let rod_force_n = readings.get(i).map_or(0.0, |r| r.rod_force_n);
+            let pin =
+                crate::arm::ArmPin::at(cylinder, rows, (hub.angle_rad, hub.rate_rad_s), q.as_slice(), qd.as_slice());
             let [ax, ay] = cylinder.arm_pin_m;
             let point_m = [ax + rows[0].dot(&q), ay + rows[1].dot(&q)];
             let force_n = pin.body_unit.map(|u| rod_force_n * u);
             let pin_load = PointLoad::<Hub>::new(ax, point_m, force_n);
             self.on_arm.push(pin_load);
-            pin_world = pin_load.in_world((s, c)).force_n;
+            self.pins_world_n.push(pin_load.in_world((s, c)).force_n);
         }
         self.gravity_m_s2 = g;
-        self.recorded.push(state, (s, c), (&self.on_arm, &self.on_string), pin_world);
+        self.recorded.push(state, (s, c), (&self.on_arm, &self.on_string), &self.pins_world_n);
         if self.recorded.steps() == recovery::CHUNK_STEPS {
             self.hand_over(series);
         }

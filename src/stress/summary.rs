@@ -115,16 +115,26 @@ pub struct FatiguePlace {
 pub struct PinSummary {
     /// The pivot's force on the arm.
     pub pivot: PinPeak,
-    /// The cylinder's rod force on the arm's pin (absent without a cylinder).
+    /// The cylinder's rod force on the arm's pin (absent without a cylinder); of several, the
+    /// most loaded pin's (each is in `cylinders`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cylinder: Option<PinPeak>,
     /// The cylinder's force on its base pin's bracket: the arm pin's reversed (the cylinder is a
     /// massless two-force member), its arm-frame components in the arm's frame at the time.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cylinder_base: Option<PinPeak>,
+    /// Of several cylinders, each one's rod force on its arm pin, in the URDF's order (its base
+    /// pin's is the same reversed); absent for one.
+    #[serde(skip_serializing_if = "few")]
+    pub cylinders: Vec<PinPeak>,
     /// The string's load on each hand (a flexible string's through its own bending; a rigid
     /// string's on hands read as pins, docs/sign-off.md), none without a string.
     pub hands: Vec<HandPeak>,
+}
+
+/// Whether a list has no more than one entry (one cylinder's pin is `cylinder` alone).
+fn few(list: &[PinPeak]) -> bool {
+    list.len() <= 1
 }
 
 /// The peak of a pin force.
@@ -434,11 +444,13 @@ fn pins(readings: &Readings) -> PinSummary {
             }
         })
         .collect();
-    let cylinder = series.cylinder_index.map(|at| readings.force_peak(at, false));
+    let cylinders: Vec<PinPeak> = series.cylinder_indices.iter().map(|&at| readings.force_peak(at, false)).collect();
+    let cylinder = cylinders.iter().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n)).cloned();
     let cylinder_base = cylinder.as_ref().map(|pin| PinPeak {
         world_n: pin.world_n.map(|f| -f),
         arm_n: pin.arm_n.map(|f| -f),
         ..pin.clone()
     });
-    PinSummary { pivot: readings.force_peak(series.pivot_index, true), cylinder, cylinder_base, hands }
+    let cylinders = if cylinders.len() > 1 { cylinders } else { Vec::new() };
+    PinSummary { pivot: readings.force_peak(series.pivot_index, true), cylinder, cylinder_base, cylinders, hands }
 }
