@@ -271,6 +271,14 @@ fn a_cylinder_out_of_its_stroke_on_the_path_is_named() {
     let m = refused_run("too-long", with(HYDRAULIC), |t| t.replace("stroke_m=\"1.00\"", "stroke_m=\"0.90\""));
     assert!(m.contains("key `actuator.kind`") && m.contains("57.9 mm longer than closed length + stroke"), "{m}");
     assert!(m.contains("at 90.00 deg"), "{m}");
+    // Of two cylinders, the second out of its stroke is the one named.
+    let m = refused_run("second-too-short", with(HYDRAULIC), |t| {
+        let a = t.find("<pipearm:cylinder ").unwrap();
+        let b = a + t[a..].find("/>").unwrap() + 2;
+        let second = t[a..b].replace("closed_length_m=\"1.56\"", "closed_length_m=\"1.65\"");
+        format!("{}\n    {second}{}", &t[..b], &t[b..])
+    });
+    assert!(m.contains("joint[lift].pipearm:cylinder[2]") && m.contains("37.5 mm shorter"), "{m}");
 }
 
 #[test]

@@ -30,7 +30,7 @@ fn robot_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn the_shipped_robots_load() {
-    for name in ["pipe_arm", "lab_arm1", "lab_arm2", "lab_arm3", "spin_up_beam"] {
+    for name in ["pipe_arm", "pipe_arm_twin", "lab_arm1", "lab_arm2", "lab_arm3", "spin_up_beam"] {
         let robot = load_robot(&manifest().join(format!("robots/{name}.urdf"))).unwrap();
         assert!(robot.arm.length_m() > 0.0);
     }
@@ -46,6 +46,10 @@ fn the_shipped_robots_load() {
     let old_robot = load_robot(&old).unwrap();
     std::fs::remove_file(&old).ok();
     assert_eq!(old_robot.arm, robot.arm);
+    // Two cylinders on one valve, in the file's order.
+    let twin = load_robot(&manifest().join("robots/pipe_arm_twin.urdf")).unwrap().lift.cylinders.unwrap();
+    assert_eq!(twin.feed, pipearm::actuator::ValveFeed::Shared);
+    assert_eq!(twin.each.iter().map(|c| c.arm_pin_m).collect::<Vec<_>>(), [[2.0, -0.7], [2.4, -0.84]]);
 }
 
 /// The full-scale arm's cylinder and servo, as sized in robots/README.md ("Drives"): checked
@@ -150,6 +154,34 @@ fn malformed_lift_machines_are_named() {
                 format!("{}{}{}", &t[..b], &t[a..b], &t[b..])
             }),
             vec![servo.into(), "given twice".into()],
+        ),
+        (
+            "valves-disagree",
+            Box::new(|t: String| {
+                let a = t.find("<pipearm:cylinder ").unwrap();
+                let b = a + t[a..].find("/>").unwrap();
+                let second = t[a..b].replace("arm_pin_m=\"2.00 -0.70\"", "arm_pin_m=\"2.20 -0.70\"");
+                format!(
+                    "{}{} valve=\"own\"/>{}{} valve=\"shared\"/>{}",
+                    &t[..a],
+                    &t[a..b],
+                    "\n    ",
+                    second,
+                    &t[b + 2..]
+                )
+            }),
+            vec![
+                format!("{cylinder}[2]@valve"),
+                "\"shared\" where the first".into(),
+                "\"own\" (one valve each)".into(),
+            ],
+        ),
+        (
+            "valve-typo",
+            Box::new(|t: String| {
+                t.replace("rod_dead_volume_m3=\"1.45e-3\"", "rod_dead_volume_m3=\"1.45e-3\" valve=\"each\"")
+            }),
+            vec![format!("{cylinder}@valve"), "\"each\"".into(), "\"shared\"".into(), "\"own\"".into()],
         ),
         (
             "unknown-element",

@@ -32,11 +32,13 @@ pub fn print(s: &RunSummary) {
     }
     {
         print_pin("pivot pin", &pins.pivot);
+        // Of several cylinders, `cylinder` is the most loaded pin; each follows by number.
+        let most = if pins.cylinders.is_empty() { "" } else { " (most loaded)" };
         if let Some(cylinder) = &pins.cylinder {
-            print_pin("cylinder pin", cylinder);
+            print_pin(&format!("cylinder pin{most}"), cylinder);
         }
         if let Some(base) = &pins.cylinder_base {
-            print_pin("cylinder base pin", base);
+            print_pin(&format!("cylinder base pin{most}"), base);
         }
         for (k, pin) in pins.cylinders.iter().enumerate() {
             print_pin(&format!("cylinder {} pin", k + 1), pin);
