@@ -38,9 +38,9 @@ pub struct Series {
     pub drive_torque_n_m: Vec<f64>,
     /// The actuator's outputs per step (empty under an ideal drive).
     pub actuator: Vec<ActuatorOutputs>,
-    /// The actuator's signals as it declares them (names, units, plots), read by the recording
-    /// and by `compare`.
-    pub actuator_signals: Vec<crate::compare::SignalDef>,
+    /// The actuator's channels as it declares them (names, units, plots), which the recording
+    /// plots.
+    pub actuator_channels: Vec<crate::actuator::ActuatorChannel>,
     /// Contact force per pad (outer index: pad), N.
     pub pad_force_n: Vec<Vec<f64>>,
     /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
@@ -347,7 +347,7 @@ fn simulate(
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
-    series.actuator_signals = crate::compare::actuator_signal_defs(&model.drive.actuator);
+    series.actuator_channels = crate::actuator::channels(&model.drive.actuator);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];

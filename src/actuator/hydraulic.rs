@@ -190,8 +190,7 @@ impl HydraulicCircuit {
 
 /// How the cylinders on the lift joint are fed: the `valve` attribute of each
 /// `<pipearm:cylinder>` (all of a joint's must agree).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ValveFeed {
     /// One valve feeds them all in parallel: their cap sides joined, their rod sides joined, one
     /// pair of chamber pressures.

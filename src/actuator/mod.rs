@@ -19,6 +19,7 @@
 //! pivot, x horizontal and y up in the base frame, x along the arm and y across it in the arm's
 //! hub frame.
 
+mod channels;
 mod column;
 pub mod controller;
 pub mod hydraulic;
@@ -26,6 +27,7 @@ mod plant;
 pub mod servo;
 mod summary;
 
+pub use channels::{ActuatorChannel, channels};
 pub use column::{CylinderStrokes, PerCylinder, Stroke};
 pub use controller::{Controller, ControllerGains};
 pub use hydraulic::{Cylinder, Cylinders, HydraulicCircuit, HydraulicDrive, Valve, ValveFeed, cylinder_number};

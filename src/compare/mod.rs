@@ -30,7 +30,7 @@ use crate::measured::{Column, Known, Measured, MeasuredError};
 use crate::model::Model;
 use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::scene::SceneError;
-pub use signals::{SignalDef, actuator_signal_defs, sensor_entity, signal_defs};
+pub use signals::{SignalDef, sensor_entity, signal_defs};
 
 /// Errors of a comparison.
 #[derive(Debug, Error)]

@@ -1,7 +1,7 @@
 //! The signals of a run a measured column may name: every sensor's channels and the run's own
 //! series, each with its SI unit and the recording's plot it belongs in.
 
-use crate::actuator::{Actuator, ActuatorOutputs};
+use crate::actuator::ActuatorChannel;
 use crate::model::Model;
 use crate::run::Series;
 
@@ -15,30 +15,12 @@ enum Source {
     TipVelocity(usize),
     DriveTorque,
     ContactForce(usize),
-    Sensor { index: usize, channel: usize },
-    Actuator(ActuatorSignal),
-}
-
-/// One of an actuator's outputs ([`ActuatorOutputs`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum ActuatorSignal {
-    TrackingError,
-    Command,
-    /// Cylinder i's rod force.
-    RodForce(usize),
-    /// Cylinder i's pressure in chamber k (0 cap, 1 rod).
-    Pressure(usize, usize),
-}
-
-impl ActuatorSignal {
-    fn of(self, o: &ActuatorOutputs) -> f64 {
-        match self {
-            ActuatorSignal::TrackingError => o.tracking_error_rad,
-            ActuatorSignal::Command => o.command,
-            ActuatorSignal::RodForce(i) => o.cylinders.get(i).map_or(f64::NAN, |c| c.rod_force_n),
-            ActuatorSignal::Pressure(i, k) => o.cylinders.get(i).map_or(f64::NAN, |c| c.pressures_pa[k]),
-        }
-    }
+    Sensor {
+        index: usize,
+        channel: usize,
+    },
+    /// The actuator's channel, as it declares it.
+    Actuator(ActuatorChannel),
 }
 
 /// A signal of a run, before it has run: name, unit and plot.
@@ -59,16 +41,16 @@ pub struct SignalDef {
 impl SignalDef {
     /// The signal's values per step of `series`, SI.
     pub fn values(&self, series: &Series) -> Vec<f64> {
-        match self.source {
+        match &self.source {
             Source::HubAngle => series.hub_angle_rad.clone(),
             Source::HubRate => series.hub_rate_rad_s.clone(),
             Source::HubAccel => series.hub_accel_rad_s2.clone(),
-            Source::TipDeflection(k) => series.tip_deflection_m.iter().map(|d| d[k]).collect(),
-            Source::TipVelocity(k) => series.tip_velocity_m_s.iter().map(|d| d[k]).collect(),
+            &Source::TipDeflection(k) => series.tip_deflection_m.iter().map(|d| d[k]).collect(),
+            &Source::TipVelocity(k) => series.tip_velocity_m_s.iter().map(|d| d[k]).collect(),
             Source::DriveTorque => series.drive_torque_n_m.clone(),
-            Source::ContactForce(pad) => series.pad_force_n[pad].clone(),
-            Source::Sensor { index, channel } => series.sensors[index].values.iter().map(|v| v[channel]).collect(),
-            Source::Actuator(signal) => series.actuator.iter().map(|o| signal.of(o)).collect(),
+            &Source::ContactForce(pad) => series.pad_force_n[pad].clone(),
+            &Source::Sensor { index, channel } => series.sensors[index].values.iter().map(|v| v[channel]).collect(),
+            Source::Actuator(channel) => series.actuator.iter().map(|o| channel.of(o)).collect(),
         }
     }
 }
@@ -104,60 +86,12 @@ pub fn signal_defs(model: &Model) -> Vec<SignalDef> {
         let entity = crate::record::force_entity(&dampener.name);
         defs.push(def(format!("contact_force.{}", dampener.name), "N", entity, 1.0, Source::ContactForce(pad)));
     }
-    defs.extend(actuator_signal_defs(&model.drive.actuator));
+    defs.extend(crate::actuator::channels(&model.drive.actuator).into_iter().map(|c| SignalDef {
+        name: c.name.clone(),
+        unit: c.unit,
+        entity: c.entity.clone(),
+        plot_scale: c.plot_scale,
+        source: Source::Actuator(c),
+    }));
     defs
-}
-
-/// The actuator's signals, which the recording plots too: the tracking error and the
-/// controller's command; per cylinder its rod force and, per valve, its chamber pressures. A
-/// single cylinder's are `actuator.rod_force` and `actuator.pressure.<chamber>`; of several,
-/// cylinder k's (from 1, the URDF's order) are `actuator.rod_force.<k>` and
-/// `actuator.pressure.<k>.<chamber>` (on a shared valve the one pair, `actuator.pressure.<chamber>`).
-pub fn actuator_signal_defs(actuator: &Actuator) -> Vec<SignalDef> {
-    let def = |name: String, unit, entity: String, plot_scale, signal| SignalDef {
-        name,
-        unit,
-        entity,
-        plot_scale,
-        source: Source::Actuator(signal),
-    };
-    let degrees = 180.0 / std::f64::consts::PI;
-    let tracking = def(
-        "actuator.tracking_error".into(),
-        "rad",
-        "plots/actuator/tracking_error_deg".into(),
-        degrees,
-        ActuatorSignal::TrackingError,
-    );
-    let command =
-        |unit| def("actuator.command".into(), unit, "plots/actuator/command".into(), 1.0, ActuatorSignal::Command);
-    match actuator {
-        Actuator::Ideal => Vec::new(),
-        Actuator::Servo(_) => vec![tracking, command("N*m")],
-        Actuator::Hydraulic(h) => {
-            let mut defs = vec![tracking, command("1")];
-            let count = h.cylinders.each.len();
-            let number = |i: usize, count: usize| crate::actuator::cylinder_number(i, count);
-            let suffix = |i: usize| number(i, count).map_or(String::new(), |k| format!(".{k}"));
-            let path = |i: usize| number(i, count).map_or(String::new(), |k| format!("/{k}"));
-            for i in 0..count {
-                let (name, entity) =
-                    (format!("actuator.rod_force{}", suffix(i)), format!("plots/actuator/rod_force{}", path(i)));
-                defs.push(def(name, "N", entity, 1.0, ActuatorSignal::RodForce(i)));
-            }
-            let valves = h.cylinders.chambers();
-            for i in 0..valves {
-                let (suffix, path) = match number(i, valves) {
-                    None => (String::new(), String::new()),
-                    Some(_) => (suffix(i), path(i)),
-                };
-                for (k, chamber) in ["cap", "rod"].into_iter().enumerate() {
-                    let name = format!("actuator.pressure{suffix}.{chamber}");
-                    let entity = format!("plots/actuator/pressure{path}/{chamber}");
-                    defs.push(def(name, "Pa", entity, 1.0, ActuatorSignal::Pressure(i, k)));
-                }
-            }
-            defs
-        }
-    }
 }

@@ -147,8 +147,8 @@ impl Writer<'_> {
         }
         let reference = s.hub_angle_rad.iter().zip(outputs).map(|(a, o)| (a + o.tracking_error_rad).to_degrees());
         self.send("plots/hub/reference_deg", reference)?;
-        for signal in &s.actuator_signals {
-            self.send(&signal.entity, signal.values(s).into_iter().map(|v| v * signal.plot_scale))?;
+        for channel in &s.actuator_channels {
+            self.send(&channel.entity, outputs.iter().map(|o| channel.of(o) * channel.plot_scale))?;
         }
         Ok(())
     }

@@ -306,7 +306,7 @@ impl Context<'_> {
             doc.root_element().children().find(|n| n.has_tag_name("joint") && n.attribute("name") == Some(joint));
         let ours: Vec<_> =
             node.iter().flat_map(|n| n.children()).filter(|c| c.tag_name().namespace() == Some(PIPEARM_NS)).collect();
-        let count = ours.iter().filter(|c| c.tag_name().name() == "cylinder").count();
+        let count = ours.iter().filter(|c| c.has_tag_name((PIPEARM_NS, "cylinder"))).count();
         let (mut cylinders, mut servo): (Option<Cylinders>, _) = (None, None);
         for child in ours {
             let name = child.tag_name().name();
