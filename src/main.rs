@@ -310,7 +310,7 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     let started = std::time::Instant::now();
     let scenario = overrides.load(path)?;
     let model = &scenario.model;
-    let (result, series) = run_partial(model, &options);
+    let (result, series) = run_partial(model, &options, &scenario.compiler);
     let name = &model.name;
     let pads = model.pair_series_names();
     let summary = match result {

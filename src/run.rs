@@ -320,10 +320,15 @@ pub fn run_reusing(
 }
 
 /// Runs a model with `options` and returns its series whether it finished or not: up to the
-/// divergence for a run the guard stopped (empty if the scene could not be built).
-pub fn run_partial(model: &Model, options: &RunOptions) -> (Result<RunSummary, SceneError>, Series) {
+/// divergence for a run the guard stopped (empty if the scene could not be built). It takes
+/// what `compiler` kept (a scenario's checks compile the arm its run takes: `Scenario::compiler`).
+pub fn run_partial(
+    model: &Model,
+    options: &RunOptions,
+    compiler: &Compiler,
+) -> (Result<RunSummary, SceneError>, Series) {
     let mut series = Series::default();
-    let summary = simulate(model, options, &mut series, &Compiler::new());
+    let summary = simulate(model, options, &mut series, compiler);
     (summary, series)
 }
 

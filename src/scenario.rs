@@ -16,12 +16,14 @@ pub mod spelling;
 mod strikes;
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use crate::arm::Fidelity;
 use crate::beam::{BeamModel, ConcentratedMass};
+use crate::compile::Compiler;
 use crate::integrate::IntegratorKind;
 use crate::model::{
     Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
@@ -267,6 +269,10 @@ pub struct Scenario {
     pub spec: ScenarioSpec,
     /// The machine and scene it describes, resolved.
     pub model: Model,
+    /// What its checks compiled (the arm the run takes, the shaper's tuning arm), kept for its
+    /// runs to take ([`crate::run::run_reusing`]); one for all the scenarios of a sweep, design
+    /// or fit.
+    pub compiler: Arc<Compiler>,
 }
 
 impl Scenario {
@@ -316,7 +322,18 @@ impl Scenario {
     /// Checks and resolves a spec as if read from `path`, with its robot already read by
     /// [`Scenario::load_robot`] (a sweep reads each robot file once for all its cases).
     pub fn from_spec_and_robot(path: &Path, spec: ScenarioSpec, robot: Robot) -> Result<Self, ScenarioError> {
-        Self::resolve(Check { path, capacity: true }, spec, robot)
+        Self::from_spec_and_robot_sharing(path, spec, robot, &Arc::new(Compiler::new()))
+    }
+
+    /// [`Scenario::from_spec_and_robot`], its checks compiling through `compiler`, which the
+    /// scenario keeps: the scenarios of a sweep share what their checks and runs compile.
+    pub fn from_spec_and_robot_sharing(
+        path: &Path,
+        spec: ScenarioSpec,
+        robot: Robot,
+        compiler: &Arc<Compiler>,
+    ) -> Result<Self, ScenarioError> {
+        Self::resolve(Check { path, capacity: true, compiler }, spec, robot)
     }
 
     /// Reads, checks and resolves a scenario file as [`Scenario::load`] does, but for its payload
@@ -324,7 +341,7 @@ impl Scenario {
     pub fn load_beyond_capacity(path: &Path) -> Result<Self, ScenarioError> {
         let spec = Self::read_spec(path)?;
         let robot = Self::load_robot(path, &spec)?;
-        Self::resolve(Check { path, capacity: false }, spec, robot)
+        Self::resolve(Check { path, capacity: false, compiler: &Arc::new(Compiler::new()) }, spec, robot)
     }
 
     fn resolve(check: Check, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
@@ -362,7 +379,7 @@ impl Scenario {
         }
         check.model(&model)?;
         check.structures_clear(&model)?;
-        Ok(Scenario { path: path.into(), spec, model })
+        Ok(Scenario { path: path.into(), spec, model, compiler: check.compiler.clone() })
     }
 }
 
@@ -371,6 +388,8 @@ struct Check<'a> {
     path: &'a Path,
     /// Whether the payload is checked against the machine's capacity.
     capacity: bool,
+    /// What the checks compile through (the closed loop's arm, the shaper's tuning arm).
+    compiler: &'a Arc<Compiler>,
 }
 
 impl Check<'_> {

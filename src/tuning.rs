@@ -27,7 +27,7 @@
 use nalgebra::{Complex, DMatrix, DVector};
 
 use crate::arm::{ArmError, ArmModel, ArmSimulation, Fidelity, LinearSystem};
-use crate::beam::BeamModel;
+use crate::compile::Compiler;
 use crate::drive::MotionProfile;
 use crate::model::{Model, TunedMode};
 
@@ -50,13 +50,15 @@ pub struct ModalResidual {
 /// first; empty if the linearised arm has no oscillating mode. `model`'s drive is the unshaped
 /// move.
 ///
+/// The beam and the linearised arm are compiled through `compiler`, which keeps them for the
+/// runs that share them.
+///
 /// # Errors
 /// The arm or its drive cannot be built or linearised at the end of the path.
-pub fn shaper_modes(model: &Model) -> Result<Vec<TunedMode>, ArmError> {
-    let beam = BeamModel::new(model.beam_spec()?)?;
-    let modes = beam.modes()?;
-    let k = modes.len().min(TUNING_MODES);
-    let arm = ArmModel::with_modes(beam, modes, Fidelity::Modal { modes: k }, model.arm_options())?;
+pub fn shaper_modes(model: &Model, compiler: &Compiler) -> Result<Vec<TunedMode>, ArmError> {
+    let beam = compiler.beam(&model.beam_spec()?)?;
+    let k = beam.modes().len().min(TUNING_MODES);
+    let arm = compiler.arm(&beam, Fidelity::Modal { modes: k }, &model.arm_options())?;
     let end_rad = model.drive.motion.end_rad();
     let sim = ArmSimulation::new(arm, model.hub_drive_held_at(end_rad), model.integrator)?;
     let system = sim.linearised()?;

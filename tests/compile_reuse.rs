@@ -49,3 +49,19 @@ fn runs_share_what_their_keys_leave_alone_and_match_runs_that_compile_it_themsel
         assert_eq!(compiler.compilations(), expected, "{name}");
     }
 }
+
+#[test]
+fn a_scenarios_run_takes_the_arm_its_checks_compiled() {
+    // Reading an actuated scenario checks its closed loop on the arm the run takes: the run
+    // compiles none of it again, and its numbers are those of a run that compiles it itself.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for name in ["hydraulic", "servo"] {
+        let scenario = Scenario::load(&root.join(format!("scenarios/{name}.toml"))).unwrap();
+        let checked = scenario.compiler.compilations();
+        assert!(checked.beams >= 1 && checked.arms >= 1, "{name}: the checks compiled {checked:?}");
+        let (shared, _) = run_reusing(&scenario.model, &RunOptions::default(), &scenario.compiler).unwrap();
+        assert_eq!(scenario.compiler.compilations(), checked, "{name}: the run compiled again");
+        let (own, _) = run_with(&scenario.model, &RunOptions::default()).unwrap();
+        assert_eq!(numbers(&shared), numbers(&own), "{name}");
+    }
+}

@@ -214,7 +214,8 @@ impl Evaluator {
     /// Runs the draws at `x`; `Err` with why the candidate's scenario is not valid.
     fn runs(&self, x: &[f64]) -> Result<Runs, String> {
         // Built on the workers too: a scenario's checks (its beam, modes and path) cost about
-        // as much as a short run.
+        // as much as a short run. The draws' checks and runs share one compiler.
+        let compiler = std::sync::Arc::new(Compiler::new());
         let scenarios: Vec<Scenario> = self.pool.install(|| {
             self.draws
                 .par_iter()
@@ -230,11 +231,11 @@ impl Evaluator {
                         set_key(&mut document, &key, value).map_err(|m| format!("`{key}`: {m}"))?;
                     }
                     let spec = spec_of(&self.path, document).map_err(|e| e.to_string())?;
-                    Scenario::from_spec_and_robot(&self.path, spec, self.robot.clone()).map_err(|e| e.to_string())
+                    Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &compiler)
+                        .map_err(|e| e.to_string())
                 })
                 .collect::<Result<_, String>>()
         })?;
-        let compiler = Compiler::new();
         let results: Vec<Option<Row>> = self.pool.install(|| {
             scenarios
                 .par_iter()

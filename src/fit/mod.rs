@@ -210,7 +210,9 @@ impl Problem {
         let spec: ScenarioSpec = self.document_at(values)?.try_into().map_err(|e: toml::de::Error| {
             Box::new(ScenarioError::Parse { path: self.path.clone(), message: e.to_string() })
         })?;
-        let mut model = Scenario::from_spec_and_robot(&self.path, spec, self.robot.clone()).map_err(Box::new)?.model;
+        let mut model = Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &self.compiler)
+            .map_err(Box::new)?
+            .model;
         if let Some(step_s) = self.settings.step_s {
             model.time.step_s = step_s;
         }

@@ -22,7 +22,6 @@ use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, Hyd
 use nalgebra::Complex;
 
 use crate::arm::{ArmError, ArmModel, ArmSimulation, HubDrive};
-use crate::beam::BeamModel;
 use crate::drive::MotionLaw;
 use crate::integrate::IntegratorKind;
 use crate::model::Model;
@@ -225,16 +224,14 @@ impl Check<'_> {
         self.closed_loop_on_path(model)
     }
 
-    /// The arm at the scene's fidelity, held by its drive at the start ([`Self::holding`]) and at
-    /// rest at points along the drive's path, linearised there (the controller sampling
-    /// continuously): every pole must decay, and an explicit integrator's step must keep each
-    /// inside its stability region.
+    /// The arm the run takes (compiled as the run compiles it, and kept for it), held by its drive
+    /// at the start ([`Self::holding`]) and at rest at points along the drive's path, linearised
+    /// there (the controller sampling continuously): every pole must decay, and an explicit
+    /// integrator's step must keep each inside its stability region.
     fn closed_loop_on_path(&self, model: &Model) -> Result<(), ScenarioError> {
-        let invalid_arm = |e: &dyn std::fmt::Display| self.invalid("payload", e.to_string());
-        let beam = BeamModel::new(model.beam_spec().map_err(|e| invalid_arm(&e))?).map_err(|e| invalid_arm(&e))?;
-        let modes = beam.modes().map_err(|e| invalid_arm(&e))?;
-        let fidelity = crate::select::fidelity_for(model, &beam, &modes).map_err(|e| invalid_arm(&e))?.fidelity;
-        let arm = ArmModel::with_modes(beam, modes, fidelity, model.arm_options()).map_err(|e| invalid_arm(&e))?;
+        let compiled = crate::select::compile_arm(model, None, self.compiler)
+            .map_err(|e| self.invalid("payload", e.to_string()))?;
+        let arm = compiled.model;
         let start = self.holding(model, ArmSimulation::new(arm.clone(), model.hub_drive(), model.integrator))?;
         let mut poles = self.decaying_poles(model, &arm, &start, &|m: &Model| m.hub_drive(), "at the start")?;
         let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());

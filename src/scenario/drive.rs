@@ -176,7 +176,7 @@ impl Check<'_> {
         let (modes, tuned) = match request.frequencies_hz {
             Some(frequencies) => (self.given_modes(frequencies, request.damping_ratios, model)?, Vec::new()),
             None => {
-                let found = tuning::shaper_modes(model).map_err(|e| {
+                let found = tuning::shaper_modes(model, self.compiler).map_err(|e| {
                     self.invalid(
                         "drive.shaper",
                         format!("the arm's modes at the end of the path cannot be computed ({e}): set drive.shaper_hz"),

@@ -105,11 +105,11 @@ pub fn run_cases(
     let queue = longest_first(todo, scenarios);
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<SweepError>> = Mutex::new(None);
-    // The cases vary a few keys: most share their beam and reduced arm.
-    let compiler = Compiler::new();
+    // The cases vary a few keys: most share their beam and reduced arm, compiled once through
+    // the compiler their checks shared (`Scenario::compiler`).
     pool.broadcast(|_| {
         while let Some(&i) = queue.get(next.fetch_add(1, Ordering::Relaxed)) {
-            match run_case(plan, &plan.cases[i], &scenarios[i], dir, &compiler) {
+            match run_case(plan, &plan.cases[i], &scenarios[i], dir, &scenarios[i].compiler) {
                 Ok(()) => done(&plan.cases[i]),
                 Err(e) => {
                     failure.lock().expect("no worker panics holding it").get_or_insert(e);

@@ -88,11 +88,14 @@ impl Plan {
             }
             specs.push((case, spec, robot_path));
         }
+        // One compiler for every case: what a case's checks compile, its run and the other
+        // cases take where their keys leave it as it was.
+        let compiler = std::sync::Arc::new(crate::compile::Compiler::new());
         let checked: Vec<Result<(Case, Scenario), SweepError>> = specs
             .into_par_iter()
             .map(|(mut case, spec, robot_path)| {
                 let (robot, robot_bytes) = &robots[&robot_path];
-                let checked = Scenario::from_spec_and_robot(path, spec, robot.clone())
+                let checked = Scenario::from_spec_and_robot_sharing(path, spec, robot.clone(), &compiler)
                     .and_then(|scenario| Ok((case_hash(&scenario, robot_bytes)?, scenario)));
                 let (hash, scenario) = checked.map_err(|e| case_error(&case, &keys, e))?;
                 case.hash = hash;
