@@ -12,6 +12,7 @@ mod checks;
 mod clamp;
 mod drive;
 mod loop_advice;
+mod sensors;
 pub mod spelling;
 mod strikes;
 
@@ -29,7 +30,7 @@ use crate::model::{
     Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
-use crate::sensor::{Sensor, SensorKind, SensorSpec};
+use crate::sensor::{SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
 pub use checks::ChecksSpec;
@@ -395,31 +396,6 @@ struct Check<'a> {
 impl Check<'_> {
     fn invalid(&self, key: &str, message: impl Into<String>) -> ScenarioError {
         ScenarioError::Invalid { path: self.path.into(), key: key.into(), message: message.into() }
-    }
-
-    /// `[[sensors]]`: each resolved on the robot, names unique; no strain gauge with a friction
-    /// clamp (its load reaches the arm as generalized forces, without a point to take moments at).
-    fn sensors(&self, specs: &[SensorSpec], robot: &Robot, payload: &Payload) -> Result<Vec<Sensor>, ScenarioError> {
-        let mut sensors: Vec<Sensor> = Vec::with_capacity(specs.len());
-        for (i, spec) in specs.iter().enumerate() {
-            let sensor =
-                spec.resolve(robot).map_err(|(key, message)| self.invalid(&format!("sensors[{i}].{key}"), message))?;
-            if let Some(j) = sensors.iter().position(|s| s.name == sensor.name) {
-                return Err(self.invalid(
-                    &format!("sensors[{i}].name"),
-                    format!("`{}` is already the name of sensors[{j}]", sensor.name),
-                ));
-            }
-            let friction = payload.string().is_some_and(|held| held.friction_clamp().is_some());
-            if friction && matches!(sensor.kind, SensorKind::StrainGauge { .. }) {
-                return Err(self.invalid(
-                    &format!("sensors[{i}].kind"),
-                    "a strain gauge needs a rigid clamp (payload.clamp = \"rigid\"): a friction-clamped string's load reaches the arm as generalized forces, without a point to take moments at",
-                ));
-            }
-            sensors.push(sensor);
-        }
-        Ok(sensors)
     }
 
     /// The ranges serde cannot check, on the resolved model.
