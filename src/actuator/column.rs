@@ -41,13 +41,6 @@ pub struct CylinderStrokes {
 }
 
 impl CylinderStrokes {
-    /// Strokes with no series flexibility.
-    pub fn rigid(strokes: impl IntoIterator<Item = Stroke>) -> Self {
-        let strokes: SmallVec<[Stroke; 2]> = strokes.into_iter().collect();
-        let n = strokes.len();
-        CylinderStrokes { strokes, flexibility_m_per_n: SmallVec::from_elem(0.0, n * n) }
-    }
-
     fn flexibility(&self, i: usize, j: usize) -> f64 {
         self.flexibility_m_per_n[i * self.strokes.len() + j]
     }
