@@ -187,6 +187,45 @@ fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
 }
 
 #[test]
+fn two_cylinders_and_the_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
+    // hydraulic_twin's two 130/70 mm cylinders on one valve: the same pressures, the same areas,
+    // so the same rod force F in each, and F (l₁ + l₂) = g cos θ Σ m x; the pivot takes the
+    // weight less both pushes.
+    let mut model = load("hydraulic_twin.toml");
+    let angle: f64 = 45f64.to_radians();
+    model.drive.motion = MotionProfile::hold(angle);
+    model.dampeners.clear();
+    model.time.settle_s = 0.3;
+    let (summary, _) = run(&model, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    let (weight, moment) = weight_by_hand(&model);
+    let (s, c) = angle.sin_cos();
+    // URDF: base pins (0.40, −0.50) and (0.48, −0.60); arm pins 2.00 m out, 0.70 m below the
+    // arm's axis and 2.40 m out, 0.84 m below.
+    let line = |base: [f64; 2], arm: [f64; 2]| {
+        let pin = [arm[0] * c - arm[1] * s, arm[0] * s + arm[1] * c];
+        let d = [pin[0] - base[0], pin[1] - base[1]];
+        let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
+        (unit, pin[0] * unit[1] - pin[1] * unit[0])
+    };
+    let lines = [line([0.40, -0.50], [2.00, -0.70]), line([0.48, -0.60], [2.40, -0.84])];
+    let rod = moment * c / (lines[0].1 + lines[1].1);
+    let pins = &summary.sign_off.as_ref().unwrap().pins;
+    assert_eq!(pins.cylinders.len(), 2, "each cylinder's pin: {pins:?}");
+    for (pin, (unit, _)) in pins.cylinders.iter().zip(lines) {
+        assert!((pin.peak_force_n / rod - 1.0).abs() < 3e-3, "rod {} vs {rod}", pin.peak_force_n);
+        for (world, u) in pin.world_n.iter().zip(unit) {
+            assert!((world - rod * u).abs() < 3e-3 * rod, "{:?}", pin.world_n);
+        }
+    }
+    let pushes = [0, 1].map(|a| rod * (lines[0].0[a] + lines[1].0[a]));
+    let pivot = [-pushes[0], weight - pushes[1]];
+    assert!((pins.pivot.peak_force_n / pivot[0].hypot(pivot[1]) - 1.0).abs() < 3e-3, "{:?} vs {pivot:?}", pins.pivot);
+    for (world, expected) in pins.pivot.world_n.iter().zip(pivot) {
+        assert!((world - expected).abs() < 3e-3 * rod, "{:?} vs {pivot:?}", pins.pivot.world_n);
+    }
+}
+
+#[test]
 fn the_root_moment_is_the_drive_torque_less_the_hubs_inertia_at_every_step() {
     // Lagrange's θ equation gives the drive torque; the summation is Newton–Euler on the parts
     // outboard of the root: they differ by the hub's own inertia, J_hub θ̈, and by second-order
