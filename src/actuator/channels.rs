@@ -7,7 +7,9 @@
 //! cylinder its rod force and, per valve, its chamber pressures: a single cylinder's are
 //! `actuator.rod_force` and `actuator.pressure.<cap|rod>`; of several, cylinder k's (from 1, the
 //! URDF's order; [`super::cylinder_number`]) are `actuator.rod_force.<k>` and, a valve each,
-//! `actuator.pressure.<k>.<cap|rod>` (one shared valve keeps `actuator.pressure.<cap|rod>`).
+//! `actuator.pressure.<k>.<cap|rod>` (one shared valve keeps `actuator.pressure.<cap|rod>`),
+//! plotted at `plots/actuator/rod_force/cylinder_<k>` and `plots/actuator/pressure/<cap|rod>_<k>`
+//! (the leaf is what the viewer's legend shows).
 
 use super::{Actuator, ActuatorOutputs, cylinder_number};
 
@@ -74,20 +76,24 @@ pub fn channels(actuator: &Actuator) -> Vec<ActuatorChannel> {
     };
     let mut out = vec![tracking, command("1")];
     let (count, valves) = (h.cylinders.each.len(), h.cylinders.chambers());
-    // `.k` in a name and `/k` in a path for cylinder (or valve) i of `of`; nothing for a lone one.
-    let numbered = |i: usize, of: usize| {
-        cylinder_number(i, of).map_or((String::new(), String::new()), |k| (format!(".{k}"), format!("/{k}")))
-    };
+    // `.k` in a name for cylinder (or valve) i of `of`, nothing for a lone one; a plot's leaf,
+    // which the viewer's legend shows, says `cylinder_k`.
+    let number = |i: usize, of: usize| cylinder_number(i, of);
     for i in 0..count {
-        let (suffix, path) = numbered(i, count);
-        let (name, entity) = (format!("actuator.rod_force{suffix}"), format!("plots/actuator/rod_force{path}"));
+        let (name, entity) = match number(i, count) {
+            None => ("actuator.rod_force".to_string(), "plots/actuator/rod_force".to_string()),
+            Some(k) => (format!("actuator.rod_force.{k}"), format!("plots/actuator/rod_force/cylinder_{k}")),
+        };
         out.push(channel(name, "N", entity, 1.0, Reading::RodForce(i)));
     }
     for i in 0..valves {
-        let (suffix, path) = numbered(i, valves);
         for (k, chamber) in ["cap", "rod"].into_iter().enumerate() {
-            let name = format!("actuator.pressure{suffix}.{chamber}");
-            let entity = format!("plots/actuator/pressure{path}/{chamber}");
+            let (name, entity) = match number(i, valves) {
+                None => (format!("actuator.pressure.{chamber}"), format!("plots/actuator/pressure/{chamber}")),
+                Some(n) => {
+                    (format!("actuator.pressure.{n}.{chamber}"), format!("plots/actuator/pressure/{chamber}_{n}"))
+                }
+            };
             out.push(channel(name, "Pa", entity, 1.0, Reading::Pressure(i, k)));
         }
     }

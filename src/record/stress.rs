@@ -300,7 +300,7 @@ impl Writer<'_> {
         let count = series.cylinder_indices.len();
         for (k, at) in series.cylinder_indices.iter().enumerate() {
             let entity = crate::actuator::cylinder_number(k, count)
-                .map_or("plots/pins/cylinder".to_string(), |n| format!("plots/pins/cylinder/{n}"));
+                .map_or("plots/pins/cylinder".to_string(), |n| format!("plots/pins/cylinder_{n}"));
             self.send_kept(&entity, magnitude(*at))?;
         }
         for (hand, at) in &series.hands {
