@@ -21,6 +21,7 @@
 //! | `tip_deflection.axial[m]`, `tip_deflection.transverse[m]` | tip displacement in the hub frame |
 //! | `tip_velocity.axial[m/s]`, `tip_velocity.transverse[m/s]` | tip velocity relative to the hub frame |
 //! | `drive_torque[N*m]` | torque of the drive on the hub |
+//! | `actuator.tracking_error[rad]`, `actuator.command[N*m or 1]`, `actuator.rod_force[N]`, `actuator.pressure.cap[Pa]`, `actuator.pressure.rod[Pa]` | a servo's or hydraulic drive's channels as the actuator declares them ([`crate::actuator::channels`]; several cylinders numbered) |
 //! | `contact_force.<pad>[N]` | contact force, one column per pad |
 //! | `string_slip[m]`, `jaw_sinking[m]` | friction clamp only |
 //! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |
@@ -148,6 +149,10 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
         push(format!("tip_velocity.{axis}[m/s]"), &mut s.tip_velocity_m_s.iter().map(|v| v[k]));
     }
     push("drive_torque[N*m]".into(), &mut s.drive_torque_n_m.iter().copied());
+    // The actuator's channels as it declares them (crate::actuator::channels).
+    for channel in &s.actuator_channels {
+        push(format!("{}[{}]", channel.name, channel.unit), &mut s.actuator.iter().map(|o| channel.of(o)));
+    }
     for (name, forces) in pad_names.iter().zip(&s.pad_force_n) {
         push(format!("contact_force.{name}[N]"), &mut forces.iter().copied());
     }
