@@ -85,9 +85,12 @@ fn sign_off_columns(series: &Series, columns: &mut Vec<(String, Vec<f64>)>) {
     };
     columns.push(("pivot.force.x[N]".into(), (0..steps).map(|k| world(k, 0)).collect()));
     columns.push(("pivot.force.y[N]".into(), (0..steps).map(|k| world(k, 1)).collect()));
-    if let [at] = stress.cylinder_indices[..] {
-        columns.push(("cylinder_pin.force.x[N]".into(), (0..steps).map(|k| value(k, at)).collect()));
-        columns.push(("cylinder_pin.force.y[N]".into(), (0..steps).map(|k| value(k, at + 1)).collect()));
+    // One cylinder's pin unnumbered; of several, numbered from 1 (docs/export.md).
+    let count = stress.cylinder_indices.len();
+    for (i, &at) in stress.cylinder_indices.iter().enumerate() {
+        let pin = if count == 1 { "cylinder_pin".to_string() } else { format!("cylinder_pin.{}", i + 1) };
+        columns.push((format!("{pin}.force.x[N]"), (0..steps).map(|k| value(k, at)).collect()));
+        columns.push((format!("{pin}.force.y[N]"), (0..steps).map(|k| value(k, at + 1)).collect()));
     }
     for (hand, at) in &stress.hands {
         for (j, name) in ["force.axial[N]", "force.transverse[N]", "moment[N*m]"].into_iter().enumerate() {
@@ -174,6 +177,31 @@ fn the_default_runs_tables_read_back_equal_to_its_series() {
     assert!(starts.into_iter().all(|i| kept[i]), "a contact's first step was dropped");
     assert!(series.modal_dofs > 0, "the default scene's model is modal: its q columns are tested");
     check_round_trip("default", &series, &["vertical_stop"]);
+}
+
+#[test]
+fn a_hydraulic_runs_tables_hold_its_actuators_channels_after_the_drive_torque() {
+    // Two cylinders on one valve (hydraulic_twin): docs/export.md's actuator columns, each
+    // cylinder's rod force numbered, the one valve's pressures not.
+    let scenario = Scenario::load(&manifest().join("scenarios/hydraulic_twin.toml")).unwrap();
+    let (_, series) = run(&scenario.model, None).unwrap();
+    let each = |f: &dyn Fn(&pipearm::actuator::ActuatorOutputs) -> f64| series.actuator.iter().map(f).collect();
+    let actuator: Vec<(String, Vec<f64>)> = vec![
+        ("actuator.tracking_error[rad]".into(), each(&|o| o.tracking_error_rad)),
+        ("actuator.command[1]".into(), each(&|o| o.command)),
+        ("actuator.rod_force.1[N]".into(), each(&|o| o.cylinders[0].rod_force_n)),
+        ("actuator.rod_force.2[N]".into(), each(&|o| o.cylinders[1].rod_force_n)),
+        ("actuator.pressure.cap[Pa]".into(), each(&|o| o.cylinders[0].pressures_pa[0])),
+        ("actuator.pressure.rod[Pa]".into(), each(&|o| o.cylinders[0].pressures_pa[1])),
+    ];
+    let mut want = expected(&series, &["vertical_stop"], false);
+    let at = want.iter().position(|(name, _)| name == "drive_torque[N*m]").unwrap() + 1;
+    want.splice(at..at, actuator);
+    let dir = scratch("twin");
+    write_tables(&dir, "twin", &series, &["vertical_stop".into()]).unwrap();
+    let file = dir.join("twin.steps.csv");
+    assert_same(&file, &read_csv(&file), &want);
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
