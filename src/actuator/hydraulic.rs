@@ -321,7 +321,8 @@ impl HydraulicDrive {
     pub fn feedforward_opening(&self, angle_rad: f64, rate_rad_s: f64, pressures_pa: &[[f64; 2]]) -> f64 {
         let c = &self.circuit;
         let cylinders = &self.cylinders;
-        let mut demand = vec![(0.0, 0.0); cylinders.chambers()];
+        // One (cap, rod) flow demand per valve, inline: this runs at every controller sample.
+        let mut demand: smallvec::SmallVec<[(f64, f64); 2]> = smallvec::smallvec![(0.0, 0.0); cylinders.chambers()];
         for (i, cylinder) in cylinders.each.iter().enumerate() {
             let rate_m_s = cylinder.length_and_arm(angle_rad).1 * rate_rad_s;
             let d = &mut demand[cylinders.chamber_of(i)];

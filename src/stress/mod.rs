@@ -40,6 +40,7 @@ pub struct StressProbe {
     pub fibres: Vec<Fibres>,
     /// Each cylinder and its pin's rows over q.
     cylinders: Vec<(Cylinder, [DVector<f64>; 2])>,
+    /// The step's force on each cylinder's pin, world X, Y, N (kept for its room).
     pins_world_n: Vec<[f64; 2]>,
     recorded: beside::Recorded,
     on_arm: Vec<PointLoad<Hub>>,
