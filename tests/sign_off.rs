@@ -147,23 +147,37 @@ fn the_hands_hold_the_strings_weight(model: &Model, series: &Series, angle_deg: 
     }
 }
 
-#[test]
-fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
-    let mut model = load("hydraulic.toml");
-    let angle: f64 = 45f64.to_radians();
+/// The hydraulic scene `name` held still at `angle` by its cylinders, its pad removed, modal(3).
+fn held_by_its_cylinders(name: &str, angle: f64) -> (Model, RunSummary) {
+    let mut model = load(name);
     model.drive.motion = MotionProfile::hold(angle);
     model.dampeners.clear();
     model.time.settle_s = 0.3;
     let (summary, _) = run(&model, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    (model, summary)
+}
+
+/// A rod's line at hub angle `angle` from its base pin `base` (world, from the pivot) to its arm
+/// pin `arm` (hub frame: along the arm, across it): its unit vector (world) and its moment arm
+/// about the pivot, m.
+fn rod_line(angle: f64, base: [f64; 2], arm: [f64; 2]) -> ([f64; 2], f64) {
+    let (s, c) = angle.sin_cos();
+    let pin = [arm[0] * c - arm[1] * s, arm[0] * s + arm[1] * c];
+    let d = [pin[0] - base[0], pin[1] - base[1]];
+    let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
+    (unit, pin[0] * unit[1] - pin[1] * unit[0])
+}
+
+#[test]
+fn the_cylinder_and_pivot_hold_the_static_arm_as_its_moment_balance_by_hand() {
+    let angle: f64 = 45f64.to_radians();
+    let (model, summary) = held_by_its_cylinders("hydraulic.toml", angle);
     let (weight, moment) = weight_by_hand(&model);
     // The rod's line from the base pin to the arm pin (URDF: base (0.40, −0.50), arm pin 2.00 m
     // out and 0.70 m below the arm's axis), its moment arm about the pivot, and the rod force
     // that balances the weight's moment g cos θ Σ m x.
-    let (s, c) = angle.sin_cos();
-    let pin = [2.0 * c + 0.7 * s, 2.0 * s - 0.7 * c];
-    let d = [pin[0] - 0.40, pin[1] + 0.50];
-    let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
-    let lever = pin[0] * unit[1] - pin[1] * unit[0];
+    let c = angle.cos();
+    let (unit, lever) = rod_line(angle, [0.40, -0.50], [2.00, -0.70]);
     let rod = moment * c / lever;
     let pins = &summary.sign_off.as_ref().unwrap().pins;
     let cylinder = pins.cylinder.as_ref().unwrap();
@@ -191,23 +205,13 @@ fn two_cylinders_and_the_pivot_hold_the_static_arm_as_its_moment_balance_by_hand
     // hydraulic_twin's two 130/70 mm cylinders on one valve: the same pressures, the same areas,
     // so the same rod force F in each, and F (l₁ + l₂) = g cos θ Σ m x; the pivot takes the
     // weight less both pushes.
-    let mut model = load("hydraulic_twin.toml");
     let angle: f64 = 45f64.to_radians();
-    model.drive.motion = MotionProfile::hold(angle);
-    model.dampeners.clear();
-    model.time.settle_s = 0.3;
-    let (summary, _) = run(&model, Some(Fidelity::Modal { modes: 3 })).unwrap();
+    let (model, summary) = held_by_its_cylinders("hydraulic_twin.toml", angle);
     let (weight, moment) = weight_by_hand(&model);
-    let (s, c) = angle.sin_cos();
+    let c = angle.cos();
     // URDF: base pins (0.40, −0.50) and (0.48, −0.60); arm pins 2.00 m out, 0.70 m below the
     // arm's axis and 2.40 m out, 0.84 m below.
-    let line = |base: [f64; 2], arm: [f64; 2]| {
-        let pin = [arm[0] * c - arm[1] * s, arm[0] * s + arm[1] * c];
-        let d = [pin[0] - base[0], pin[1] - base[1]];
-        let unit = [d[0] / d[0].hypot(d[1]), d[1] / d[0].hypot(d[1])];
-        (unit, pin[0] * unit[1] - pin[1] * unit[0])
-    };
-    let lines = [line([0.40, -0.50], [2.00, -0.70]), line([0.48, -0.60], [2.40, -0.84])];
+    let lines = [rod_line(angle, [0.40, -0.50], [2.00, -0.70]), rod_line(angle, [0.48, -0.60], [2.40, -0.84])];
     let rod = moment * c / (lines[0].1 + lines[1].1);
     let pins = &summary.sign_off.as_ref().unwrap().pins;
     assert_eq!(pins.cylinders.len(), 2, "each cylinder's pin: {pins:?}");
