@@ -100,8 +100,15 @@ pub fn cylinder_lengths_m(h: &HydraulicDrive, strokes: &CylinderStrokes, v: &[f6
     lengths_m(strokes, &pressure_forces_n(h, v))
 }
 
-/// Writes the rates of the scaled pressures and of the spool into `f` (module doc).
-pub fn rates(h: &HydraulicDrive, strokes: &CylinderStrokes, command: f64, v: &[f64], f: &mut [f64]) {
+/// Writes the rates of the scaled pressures and of the spool into `f` (module doc), and returns
+/// the rod forces ([`rod_forces_n`]): one evaluation of the columns for both.
+pub fn rates_and_rod_forces(
+    h: &HydraulicDrive,
+    strokes: &CylinderStrokes,
+    command: f64,
+    v: &[f64],
+    f: &mut [f64],
+) -> PerCylinder {
     let columns = Columns::at(h, strokes, v);
     let circuit = &h.circuit;
     let beta = circuit.bulk_modulus_pa / circuit.supply_pressure_pa;
@@ -117,6 +124,11 @@ pub fn rates(h: &HydraulicDrive, strokes: &CylinderStrokes, command: f64, v: &[f
     }
     let spool = spool_index(h);
     f[spool] = (command - v[spool]) / circuit.valve.spool_time_constant_s;
+    let mut forces = columns.forces_n;
+    for (i, c) in h.cylinders.each.iter().enumerate() {
+        forces[i] += c.end_stop_force_n(columns.lengths_m[i], columns.rates_m_s[i]);
+    }
+    forces
 }
 
 /// The oil columns at one state.
@@ -125,6 +137,8 @@ struct Columns {
     volumes_m3: SmallVec<[(f64, f64); 2]>,
     /// Flows into the chambers through each valve, relief included (cap, rod), m³/s.
     flows_m3_s: SmallVec<[[f64; 2]; 2]>,
+    /// Each rod's force from its chamber pressures, N.
+    forces_n: PerCylinder,
     /// Each cylinder's length with its series flexibility, m.
     lengths_m: PerCylinder,
     /// Each cylinder's rate of extension, m/s (module doc).
@@ -135,7 +149,8 @@ impl Columns {
     fn at(h: &HydraulicDrive, strokes: &CylinderStrokes, v: &[f64]) -> Self {
         let (cylinders, circuit) = (&h.cylinders, &h.circuit);
         let ps = circuit.supply_pressure_pa;
-        let lengths = lengths_m(strokes, &pressure_forces_n(h, v));
+        let forces_n = pressure_forces_n(h, v);
+        let lengths = lengths_m(strokes, &forces_n);
         let mut volumes: SmallVec<[(f64, f64); 2]> = SmallVec::from_elem((0.0, 0.0), cylinders.chambers());
         for (i, c) in cylinders.each.iter().enumerate() {
             let (v1, v2) = c.volumes_m3(lengths[i]);
@@ -147,7 +162,7 @@ impl Columns {
         let flows = (0..cylinders.chambers()).map(|g| circuit.flows_m3_s(spool, [v[2 * g] * ps, v[2 * g + 1] * ps]));
         let flows_m3_s: SmallVec<[[f64; 2]; 2]> = flows.collect();
         let rates_m_s = column_rates_m_s(h, strokes, &volumes, &flows_m3_s);
-        Columns { volumes_m3: volumes, flows_m3_s, lengths_m: lengths, rates_m_s }
+        Columns { volumes_m3: volumes, flows_m3_s, forces_n, lengths_m: lengths, rates_m_s }
     }
 }
 
@@ -165,8 +180,14 @@ fn column_rates_m_s(
     }
     let (cylinders, beta) = (&h.cylinders.each, h.circuit.bulk_modulus_pa);
     let n = cylinders.len();
-    let group = |i: usize| h.cylinders.chamber_of(i);
     let areas = |i: usize| (cylinders[i].cap_area_m2(), cylinders[i].rod_area_m2());
+    if n == 1 {
+        // The system is one equation: ṡe = (ṡ + c Ḟ₀) / (1 + c k), k the oil column's spring.
+        let ((a1, a2), (v1, v2), [q1, q2], c) = (areas(0), volumes_m3[0], flows_m3_s[0], strokes.flexibility(0, 0));
+        let (force_rate, column) = (beta * (a1 * q1 / v1 - a2 * q2 / v2), beta * (a1 * a1 / v1 + a2 * a2 / v2));
+        return PerCylinder::from_elem((rates[0] + c * force_rate) / (1.0 + c * column), 1);
+    }
+    let group = |i: usize| h.cylinders.chamber_of(i);
     // Ḟ_i = b₀_i − Σ_j B_ij ṡe_j.
     let b0 = |i: usize| {
         let ((a1, a2), (v1, v2), [q1, q2]) = (areas(i), volumes_m3[group(i)], flows_m3_s[group(i)]);

@@ -149,14 +149,18 @@ impl ActuatorPlant {
     }
 
     /// Writes the generalized forces of its coordinates into `f` (the motor's torques; the
-    /// first-order states' rates).
-    pub fn forces(&self, strokes: &Strokes, x: &[f64], v: &[f64], f: &mut [f64]) {
+    /// first-order states' rates) and returns what it puts on the arm ([`Self::load`]).
+    pub fn forces_and_load(&self, strokes: &Strokes, x: &[f64], v: &[f64], f: &mut [f64]) -> PerCylinder {
         match (&self.actuator, strokes) {
             (Actuator::Servo(s), Strokes::Hub(hub)) => {
-                f[0] = self.controller.output - s.machine.spring_torque_n_m((x[0], v[0]), (hub.position, hub.rate))
+                let torque = s.machine.spring_torque_n_m((x[0], v[0]), (hub.position, hub.rate));
+                f[0] = self.controller.output - torque;
+                PerCylinder::from_elem(torque, 1)
             }
-            (Actuator::Hydraulic(h), Strokes::Cylinders(c)) => column::rates(h, c, self.controller.output, v, f),
-            _ => {}
+            (Actuator::Hydraulic(h), Strokes::Cylinders(c)) => {
+                column::rates_and_rod_forces(h, c, self.controller.output, v, f)
+            }
+            _ => PerCylinder::from_elem(0.0, 1),
         }
     }
 

@@ -368,7 +368,10 @@ impl ArmSystem<'_> {
         let Some(plant) = self.drive.plant() else { return };
         let own = 1 + self.arm.elastic_dofs();
         let (strokes, pins) = self.actuator_strokes(plant, x, v);
-        let loads = plant.load(&strokes, &x[own..], &v[own..]);
+        let m = plant.dofs();
+        let mut rates: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, m);
+        let loads = plant.forces_and_load(&strokes, &x[own..], &v[own..], &mut rates);
+        f[own..own + m].iter_mut().zip(&rates).for_each(|(fi, r)| *fi += r);
         match &plant.arm_pins {
             Some(couplings) if !pins.is_empty() => {
                 for ((pin, rows), load) in pins.iter().zip(&couplings.rows).zip(&loads) {
@@ -380,10 +383,6 @@ impl ArmSystem<'_> {
             }
             _ => f[0] += loads[0],
         }
-        let m = plant.dofs();
-        let mut rates: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, m);
-        plant.forces(&strokes, &x[own..], &v[own..], &mut rates);
-        f[own..own + m].iter_mut().zip(&rates).for_each(|(fi, r)| *fi += r);
     }
 
     /// What the actuator reports at (x, v) and time `t_s`: its moment about the pivot with its
