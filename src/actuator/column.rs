@@ -51,15 +51,20 @@ pub fn spool_index(h: &HydraulicDrive) -> usize {
     2 * h.cylinders.chambers()
 }
 
+/// Valve `g`'s chamber pressures (cap, rod), Pa, from the scaled states `v`.
+fn valve_pressures_pa(h: &HydraulicDrive, v: &[f64], g: usize) -> [f64; 2] {
+    let ps = h.circuit.supply_pressure_pa;
+    [v[2 * g] * ps, v[2 * g + 1] * ps]
+}
+
+/// Each valve's chamber pressures (cap, rod), Pa, from the scaled states `v`.
+pub fn pressures_per_valve_pa(h: &HydraulicDrive, v: &[f64]) -> SmallVec<[[f64; 2]; 2]> {
+    (0..h.cylinders.chambers()).map(|g| valve_pressures_pa(h, v, g)).collect()
+}
+
 /// Each cylinder's chamber pressures (cap, rod), Pa, from the scaled states `v`.
 pub fn pressures_pa(h: &HydraulicDrive, v: &[f64]) -> SmallVec<[[f64; 2]; 2]> {
-    let ps = h.circuit.supply_pressure_pa;
-    (0..h.cylinders.each.len())
-        .map(|i| {
-            let g = 2 * h.cylinders.chamber_of(i);
-            [v[g] * ps, v[g + 1] * ps]
-        })
-        .collect()
+    (0..h.cylinders.each.len()).map(|i| valve_pressures_pa(h, v, h.cylinders.chamber_of(i))).collect()
 }
 
 /// Each rod's force from its chamber pressures, N.
@@ -87,10 +92,7 @@ pub fn rod_forces_n(h: &HydraulicDrive, strokes: &CylinderStrokes, v: &[f64]) ->
     let lengths = lengths_m(strokes, &forces);
     let outside = |(c, l): (&super::Cylinder, &f64)| !(0.0..=c.stroke_m).contains(&(l - c.closed_length_m));
     if h.cylinders.each.iter().zip(&lengths).any(outside) {
-        let columns = Columns::at(h, strokes, v);
-        for (i, c) in h.cylinders.each.iter().enumerate() {
-            forces[i] += c.end_stop_force_n(columns.lengths_m[i], columns.rates_m_s[i]);
-        }
+        forces = Columns::at(h, strokes, v).rod_forces_n(h);
     }
     forces
 }
@@ -124,11 +126,7 @@ pub fn rates_and_rod_forces(
     }
     let spool = spool_index(h);
     f[spool] = (command - v[spool]) / circuit.valve.spool_time_constant_s;
-    let mut forces = columns.forces_n;
-    for (i, c) in h.cylinders.each.iter().enumerate() {
-        forces[i] += c.end_stop_force_n(columns.lengths_m[i], columns.rates_m_s[i]);
-    }
-    forces
+    columns.rod_forces_n(h)
 }
 
 /// The oil columns at one state.
@@ -148,7 +146,6 @@ struct Columns {
 impl Columns {
     fn at(h: &HydraulicDrive, strokes: &CylinderStrokes, v: &[f64]) -> Self {
         let (cylinders, circuit) = (&h.cylinders, &h.circuit);
-        let ps = circuit.supply_pressure_pa;
         let forces_n = pressure_forces_n(h, v);
         let lengths = lengths_m(strokes, &forces_n);
         let mut volumes: SmallVec<[(f64, f64); 2]> = SmallVec::from_elem((0.0, 0.0), cylinders.chambers());
@@ -159,10 +156,19 @@ impl Columns {
         }
         volumes.iter_mut().for_each(|(v1, v2)| (*v1, *v2) = (v1.max(1e-9), v2.max(1e-9)));
         let spool = v[spool_index(h)].clamp(-1.0, 1.0);
-        let flows = (0..cylinders.chambers()).map(|g| circuit.flows_m3_s(spool, [v[2 * g] * ps, v[2 * g + 1] * ps]));
+        let flows = (0..cylinders.chambers()).map(|g| circuit.flows_m3_s(spool, valve_pressures_pa(h, v, g)));
         let flows_m3_s: SmallVec<[[f64; 2]; 2]> = flows.collect();
         let rates_m_s = column_rates_m_s(h, strokes, &volumes, &flows_m3_s);
         Columns { volumes_m3: volumes, flows_m3_s, forces_n, lengths_m: lengths, rates_m_s }
+    }
+
+    /// The rod forces: the pressures' and, past a stroke, the end cap's (zero within it).
+    fn rod_forces_n(self, h: &HydraulicDrive) -> PerCylinder {
+        let mut forces = self.forces_n;
+        for (i, c) in h.cylinders.each.iter().enumerate() {
+            forces[i] += c.end_stop_force_n(self.lengths_m[i], self.rates_m_s[i]);
+        }
+        forces
     }
 }
 

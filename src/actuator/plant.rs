@@ -297,9 +297,7 @@ impl ActuatorPlant {
 /// The spool command that feeds the reference forward (module doc of [`super::hydraulic`]).
 fn hydraulic_feedforward(h: &HydraulicDrive, controller: &Controller, reference: &DriveState, v: &[f64]) -> f64 {
     let gains = &controller.gains;
-    let ps = h.circuit.supply_pressure_pa;
-    let pressures: SmallVec<[[f64; 2]; 2]> =
-        (0..h.cylinders.chambers()).map(|g| [v[2 * g] * ps, v[2 * g + 1] * ps]).collect();
+    let pressures = column::pressures_per_valve_pa(h, v);
     gains.velocity_feedforward * h.feedforward_opening(reference.angle_rad, reference.rate_rad_s, &pressures)
         + gains.acceleration_feedforward * reference.accel_rad_s2
 }
