@@ -18,6 +18,7 @@ use std::sync::{Arc, Mutex};
 
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity};
 use crate::beam::{BeamError, BeamModel, BeamSpec, ModalBasis};
+use crate::robot::TiltingHead;
 
 /// How many compiled parts of each kind are kept: a sweep's cases arrive in cost order, not
 /// grouped by what they share, and a handful covers the distinct beams of a sweep over pads,
@@ -41,6 +42,7 @@ struct ArmKey {
     beam: BeamKey,
     fidelity: Fidelity,
     options: ArmOptions,
+    head: Option<TiltingHead>,
 }
 
 /// The last [`KEPT`] values compiled, by what they were compiled from.
@@ -150,17 +152,19 @@ impl Compiler {
         CompiledBeam { key, built }
     }
 
-    /// The arm of `compiled` reduced to `fidelity` with `options`.
+    /// The arm of `compiled` reduced to `fidelity` with `options`, with the robot's tilting
+    /// `head` turning on it.
     pub fn arm(
         &self,
         compiled: &CompiledBeam,
         fidelity: Fidelity,
         options: &ArmOptions,
+        head: Option<&TiltingHead>,
     ) -> Result<Arc<ArmModel>, ArmError> {
-        let key = ArmKey { beam: compiled.key.clone(), fidelity, options: options.clone() };
+        let key = ArmKey { beam: compiled.key.clone(), fidelity, options: options.clone(), head: head.cloned() };
         self.arms.get_or_compile(key, || {
             let (beam, modes) = (*compiled.built).clone();
-            ArmModel::with_modes(beam, modes, fidelity, options.clone()).map(Arc::new)
+            ArmModel::with_modes(beam, modes, fidelity, options.clone())?.with_head(head).map(Arc::new)
         })
     }
 }

@@ -595,6 +595,12 @@ fn print_summary(path: &Path, s: &RunSummary) {
         None => String::new(),
     };
     println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}{read}", 1e3 * r.amplitude_m);
+    if let Some(h) = &s.head {
+        println!(
+            "head                {}: rest {:.3}°, range {:.3}° ..= {:.3}°, residual ±{:.3}° after the drive",
+            h.joint, h.rest_angle_deg, h.min_angle_deg, h.max_angle_deg, h.residual_swing_deg
+        );
+    }
     if let Some(slip) = &s.string_slip {
         println!(
             "string slip         max {:.3} mm, final {:.3} mm (friction clamp, {:.0} N per jaw)",

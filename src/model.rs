@@ -111,7 +111,8 @@ impl Model {
 
     /// The arm model at `fidelity`.
     pub fn arm_model(&self, fidelity: Fidelity) -> Result<ArmModel, ArmError> {
-        ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm_options())
+        ArmModel::new(BeamModel::new(self.beam_spec()?)?, fidelity, self.arm_options())?
+            .with_head(self.robot.head.as_ref())
     }
 
     /// How the arm's hub moves: prescribed by the profile under an ideal drive, else driven by

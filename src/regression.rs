@@ -78,6 +78,8 @@ pub fn default_tolerance(name: &str) -> (f64, f64) {
         "peak_stress_pa" => (0.02, 1e4),
         "utilisation" => (0.02, 1e-4),
         "damage_per_lift" => (0.10, 1e-15),
+        "min_angle_deg" | "max_angle_deg" => (0.02, 0.01),
+        "residual_swing_deg" => (0.05, 0.002),
         _ => (0.02, 0.0),
     }
 }
@@ -100,6 +102,11 @@ pub fn quantities_of(summary: &RunSummary) -> Vec<(String, f64)> {
         ("peak_drive_torque_n_m", summary.peak_drive_torque_n_m),
     ];
     q.extend(optional.into_iter().filter(|(_, v)| v.is_finite()).map(|(n, v)| (n.to_string(), v)));
+    if let Some(head) = &summary.head {
+        q.push(("head.min_angle_deg".into(), head.min_angle_deg));
+        q.push(("head.max_angle_deg".into(), head.max_angle_deg));
+        q.push(("head.residual_swing_deg".into(), head.residual_swing_deg));
+    }
     q.extend(sign_off_quantities(summary));
     q
 }

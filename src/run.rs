@@ -12,12 +12,15 @@ use crate::contact::{Impact, ImpactTracker};
 use crate::guard::{Divergence, DivergenceGuard, stability_advice};
 use crate::integrate::StepControl;
 use crate::model::{DEFAULT_TOLERANCE_M, Model};
-use crate::point_load::{PointLoad, World};
 use crate::scene::{Frame, Scene, SceneError, SceneLayout};
-use crate::sensor::probe::ArmState;
 pub use crate::sensor::summary::{ChannelPeak, SensorSummary};
 use crate::sensor::{Sensor, SensorProbe};
 use crate::stress::StressProbe;
+
+mod readings;
+
+pub use readings::HeadSummary;
+use readings::{read_head, read_sensors, read_string};
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -55,6 +58,8 @@ pub struct Series {
     /// Largest normal stress along the held string, axial and bending, Pa, and its station from
     /// the string's hub-side end, m (empty without a string).
     pub string_peak_stress: Vec<[f64; 2]>,
+    /// The tilting head's angle on its hinge, rad (empty without one).
+    pub head_angle_rad: Vec<f64>,
     /// Kinetic, strain and gravity energy, J.
     pub energies_j: Vec<[f64; 3]>,
     /// Elastic coordinates q (modal and rigid models only; empty for fe), `modal_dofs` per step
@@ -225,6 +230,9 @@ pub struct RunSummary {
     pub pairs: Vec<PairSummary>,
     /// The friction clamp's slip, if the string is held by one.
     pub string_slip: Option<SlipSummary>,
+    /// The tilting head's swing (left out of the file without one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub head: Option<HeadSummary>,
     /// The held string: its fidelity, frequencies in its hands and peak stress (left out of
     /// the file without a string).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -366,6 +374,7 @@ fn simulate(
     record(&scene, &first, series, &mut trackers);
     read_sensors(&scene, &probes, series);
     read_string(&scene, model.physics.gravity_m_s2, series);
+    read_head(&scene, series);
     stress.iter_mut().for_each(|p| p.read(&scene, &first, model.physics.gravity_m_s2, &mut series.stress));
     keeper.keep(&scene, series, options.capture_frames, false);
     // The steps, in a closure so that the stress readings are completed whether they end or
@@ -400,6 +409,7 @@ fn simulate(
             record(&scene, &sample, series, &mut trackers);
             read_sensors(&scene, &probes, series);
             read_string(&scene, model.physics.gravity_m_s2, series);
+            read_head(&scene, series);
             stress.iter_mut().for_each(|p| p.read(&scene, &sample, model.physics.gravity_m_s2, &mut series.stress));
             keeper.keep(&scene, series, options.capture_frames, end - scene.arm.time_s() <= sliver);
         }
@@ -564,38 +574,6 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
     }
 }
 
-/// The held string's tip deflection and stress at the scene's current state.
-fn read_string(scene: &Scene, gravity_m_s2: f64, series: &mut Series) {
-    let Some(probe) = &scene.string else { return };
-    let (hub, q, qd) = scene.arm.kinematics();
-    let qdd = scene.arm.elastic_accelerations();
-    let reading = probe.read(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2);
-    series.string_tip_deflection_m.push(reading.tip_deflection_m);
-    series.string_stress_pa.push(reading.max_bending_stress_pa);
-    // A flexible string's stations are read from the recorded q after the run, where it is kept.
-    if !(probe.is_flexible() && series.modal_dofs > 0) {
-        series.string_peak_stress.push(probe.peak_stress(&ArmState { hub, q: &q, qd: &qd, qdd: &qdd }, gravity_m_s2));
-    }
-}
-
-/// Each sensor's reading at the scene's current state.
-fn read_sensors(scene: &Scene, probes: &[SensorProbe], series: &mut Series) {
-    if probes.is_empty() {
-        return;
-    }
-    let (hub, q, qd) = scene.arm.kinematics();
-    let qdd = scene.arm.elastic_accelerations();
-    let state = ArmState { hub, q: &q, qd: &qd, qdd: &qdd };
-    let loads: Vec<PointLoad<World>> = scene
-        .pairs()
-        .filter(|p| p.force_n > 0.0 && p.side == crate::scene::Side::Arm)
-        .map(|p| PointLoad::new(p.station_m, p.point_m, p.normal_world.map(|n| p.force_n * n)))
-        .collect();
-    for (probe, out) in probes.iter().zip(&mut series.sensors) {
-        out.values.push(probe.read(&state, &loads));
-    }
-}
-
 fn summarize(
     model: &Model,
     scene: &Scene,
@@ -687,6 +665,7 @@ fn summarize(
             max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
         }),
         string: None,
+        head: HeadSummary::of(model, series, model.drive_end_s()),
         sign_off: None,
     })
 }

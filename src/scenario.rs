@@ -609,6 +609,16 @@ impl Check<'_> {
                     format!("`{}` is not a link on the arm: allowed {}", spec.hand, names.join(", ")),
                 )
             })?;
+            if let Some(head) = robot.head.as_ref().filter(|_| body.tilts) {
+                return Err(self.invalid(
+                    &key_of(prefix, "hand"),
+                    format!(
+                        "`{}` turns on the tilting head (joint `{}`): a string held on a tilting head is not \
+                         modelled yet; lock its hinge (kind=\"locked\") or grip with a link fixed to the arm",
+                        spec.hand, head.joint
+                    ),
+                ));
+            }
             if !(body.station_m > 0.0 && body.station_m <= arm_length) {
                 return Err(self.invalid(
                     &key_of(prefix, "hand"),

@@ -232,7 +232,7 @@ pub fn compile_arm(model: &Model, fidelity: Option<Fidelity>, compiler: &Compile
         Some(fidelity) => Choice::set(fidelity, "set on the command line"),
         None => fidelity_for(model, compiled.beam(), compiled.modes())?,
     };
-    let reduced = compiler.arm(&compiled, arm.fidelity, &model.arm_options())?;
+    let reduced = compiler.arm(&compiled, arm.fidelity, &model.arm_options(), model.robot.head.as_ref())?;
     let fastest_rad_s = fastest_rad_s(model, &reduced);
     Ok(CompiledArm { string, arm, model: reduced, fastest_rad_s })
 }
@@ -347,7 +347,9 @@ fn oscillating_poles_at_end(
     k: usize,
 ) -> Option<Vec<Complex<f64>>> {
     let fidelity = Fidelity::Modal { modes: k };
-    let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options()).ok()?;
+    let arm = ArmModel::with_modes(beam.clone(), modes.clone(), fidelity, model.arm_options())
+        .and_then(|arm| arm.with_head(model.robot.head.as_ref()))
+        .ok()?;
     let poles = poles_held_at_end(model, Arc::new(arm))?;
     let mut oscillating: Vec<Complex<f64>> = poles.into_iter().filter(|p| p.im > 0.0).collect();
     oscillating.sort_by(|a, b| a.im.total_cmp(&b.im));

@@ -58,7 +58,7 @@ pub struct ModalResidual {
 pub fn shaper_modes(model: &Model, compiler: &Compiler) -> Result<Vec<TunedMode>, ArmError> {
     let beam = compiler.beam(&model.beam_spec()?)?;
     let k = beam.modes().len().min(TUNING_MODES);
-    let arm = compiler.arm(&beam, Fidelity::Modal { modes: k }, &model.arm_options())?;
+    let arm = compiler.arm(&beam, Fidelity::Modal { modes: k }, &model.arm_options(), model.robot.head.as_ref())?;
     let end_rad = model.drive.motion.end_rad();
     let sim = ArmSimulation::new(arm, model.hub_drive_held_at(end_rad), model.integrator)?;
     let system = sim.linearised()?;

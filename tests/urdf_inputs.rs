@@ -272,7 +272,7 @@ fn malformed_urdf_is_named() {
         (
             "joint-type",
             Box::new(|t: String| t.replace("name=\"wrist\" type=\"fixed\"", "name=\"wrist\" type=\"revolute\"")),
-            &["joint[wrist]", "fixed or prismatic"],
+            &["joint[wrist].pipearm:hinge", "missing", "kind=\"locked\""],
         ),
         (
             "limits",

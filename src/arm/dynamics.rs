@@ -5,9 +5,10 @@ use std::cell::{Cell, RefCell};
 use nalgebra::{DMatrix, DVector};
 use smallvec::SmallVec;
 
+use super::pin::ArmPin;
 use super::products::{add_product, bilinear, dot, product};
 use super::{ArmContact, ArmModel, Energies};
-use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, Cylinder, CylinderStrokes, Stroke, Strokes};
+use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant, CylinderStrokes, Stroke, Strokes};
 use crate::drive::{DriveState, MotionProfile};
 use crate::integrate::Dynamics;
 
@@ -77,7 +78,7 @@ pub struct ArmSystem<'a> {
     /// Pad contacts, evaluated on the current configuration.
     pub contacts: &'a [ArmContact],
     /// The prescribed hub by time, shared with the simulation's outputs.
-    hub: &'a HubCache,
+    pub(super) hub: &'a HubCache,
     /// A free hub's buffers, reused by every evaluation within the step.
     scratch: RefCell<FreeHubScratch>,
 }
@@ -155,7 +156,7 @@ impl<'a> ArmSystem<'a> {
     /// without θ̈ S and the contacts, to `f` (allocation-free: it runs several times a step):
     /// −(D + 2θ̇C) q̇ − (K − θ̇²W − g s K_g + θ̈ C) q + θ̇² a − g s b_u − g c b_v + Q_q. A free
     /// hub's θ̈ is unknown here (0 in its state): its mass matrix carries the whole θ̈ S̃.
-    fn add_elastic_forces(
+    pub(super) fn add_elastic_forces(
         &self,
         hub: &DriveState,
         (s, c): (f64, f64),
@@ -189,7 +190,7 @@ impl<'a> ArmSystem<'a> {
 
     /// Adds the pad contacts' generalized forces: on q to `f_q`, and their moment about the pivot
     /// to `f_theta` where the hub is free (each contact evaluated once).
-    fn add_contact_forces(
+    pub(super) fn add_contact_forces(
         &self,
         hub: &DriveState,
         q: &DVector<f64>,
@@ -366,7 +367,7 @@ impl ArmSystem<'_> {
     /// work through q), and its own coordinates' forces and rates.
     pub(crate) fn add_actuator_forces(&self, x: &[f64], v: &[f64], f: &mut [f64]) {
         let Some(plant) = self.drive.plant() else { return };
-        let own = 1 + self.arm.elastic_dofs();
+        let own = self.own_start();
         let (strokes, pins) = self.actuator_strokes(plant, x, v);
         let m = plant.dofs();
         let mut rates: SmallVec<[f64; 8]> = SmallVec::from_elem(0.0, m);
@@ -389,7 +390,7 @@ impl ArmSystem<'_> {
     /// own outputs.
     pub(crate) fn actuator_outputs(&self, t_s: f64, x: &[f64], v: &[f64]) -> Option<ActuatorOutputs> {
         let plant = self.drive.plant()?;
-        let own = 1 + self.arm.elastic_dofs();
+        let own = self.own_start();
         let (strokes, pins) = self.actuator_strokes(plant, x, v);
         let loads = plant.load(&strokes, &x[own..], &v[own..]);
         let hub_torque =
@@ -456,7 +457,7 @@ impl ArmSystem<'_> {
     fn add_actuator_tangents(&self, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
         let Some(plant) = self.drive.plant() else { return };
         let n = x.len();
-        let own = 1 + self.arm.elastic_dofs();
+        let own = self.own_start();
         let read = if plant.arm_pins.is_some() { 0..n } else { 0..1 };
         let columns: Vec<usize> = read.chain(own..n).collect();
         let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
@@ -488,52 +489,22 @@ impl ArmSystem<'_> {
     }
 }
 
-/// A cylinder's arm pin on the deformed arm, and what the rod force does through it.
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct ArmPin {
-    /// Pin-to-pin length and its rate from the arm's coordinates, m and m/s.
-    pub stroke: Stroke,
-    /// Moment about the pivot per newton of rod force, m.
-    pub lever_m: f64,
-    /// The rod's direction (base to arm pin) in the hub frame.
-    pub body_unit: [f64; 2],
-}
-
-impl ArmPin {
-    /// The pin of `cylinder` on the arm, its hub-frame displacement `rows` over q, the hub at
-    /// (θ, θ̇) and the arm at (q, q̇).
-    pub(crate) fn at(cylinder: &Cylinder, rows: &[DVector<f64>; 2], hub: (f64, f64), q: &[f64], qd: &[f64]) -> Self {
-        let [ax, ay] = cylinder.arm_pin_m;
-        let body = [ax + dot(&rows[0], q), ay + dot(&rows[1], q)];
-        // Hub-frame velocity of the pin: its elastic rate plus the frame's rotation θ̇ k × r.
-        let body_rate = [dot(&rows[0], qd) - hub.1 * body[1], dot(&rows[1], qd) + hub.1 * body[0]];
-        let (s, c) = hub.0.sin_cos();
-        let world = |r: [f64; 2]| [c * r[0] - s * r[1], s * r[0] + c * r[1]];
-        let (point, velocity) = (world(body), world(body_rate));
-        let d = [point[0] - cylinder.base_pin_m[0], point[1] - cylinder.base_pin_m[1]];
-        let length = d[0].hypot(d[1]);
-        let unit = [d[0] / length, d[1] / length];
-        ArmPin {
-            stroke: Stroke { position: length, rate: unit[0] * velocity[0] + unit[1] * velocity[1] },
-            lever_m: point[0] * unit[1] - point[1] * unit[0],
-            body_unit: [c * unit[0] + s * unit[1], -s * unit[0] + c * unit[1]],
-        }
-    }
-}
-
 impl Dynamics for ArmSystem<'_> {
     fn dofs(&self) -> usize {
-        match self.drive {
+        (match self.drive {
             HubDrive::Prescribed(_) => self.arm.elastic_dofs(),
             HubDrive::Free { .. } => self.arm.elastic_dofs() + 1,
             HubDrive::Actuated(plant) => self.arm.elastic_dofs() + 1 + plant.dofs(),
-        }
+        }) + self.arm.head_dofs()
     }
 
-    fn mass_matrix(&self, _t: f64, x: &DVector<f64>, m: &mut DMatrix<f64>) {
+    fn mass_matrix(&self, t: f64, x: &DVector<f64>, m: &mut DMatrix<f64>) {
         let n = self.arm.elastic_dofs();
+        if self.arm.head.is_some() {
+            m.fill(0.0);
+        }
         match self.drive {
-            HubDrive::Prescribed(_) => m.copy_from(&self.arm.mass),
+            HubDrive::Prescribed(_) => m.view_mut((0, 0), (n, n)).copy_from(&self.arm.mass),
             HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let q = x.rows(1, n).into_owned();
                 let s = self.coupling(&q);
@@ -542,12 +513,14 @@ impl Dynamics for ArmSystem<'_> {
                 m.view_mut((0, 1), (1, n)).copy_from(&s.transpose());
                 m.view_mut((1, 1), (n, n)).copy_from(&self.arm.mass);
                 if let Some(plant) = self.drive.plant() {
+                    let own = self.own_start();
                     for i in 0..plant.dofs() {
-                        m[(1 + n + i, 1 + n + i)] = plant.mass(i);
+                        m[(own + i, own + i)] = plant.mass(i);
                     }
                 }
             }
         }
+        self.add_head_mass(t, x, m);
     }
 
     fn forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
@@ -555,6 +528,9 @@ impl Dynamics for ArmSystem<'_> {
             HubDrive::Prescribed(profile) => {
                 // q = x, q̇ = v: no split, no copies.
                 let (hub, trig) = self.hub.at(profile, t);
+                if self.arm.head.is_some() {
+                    return self.prescribed_forces_with_head(t, &hub, trig, x, v, f);
+                }
                 // −θ̈ S̃ = −θ̈ (S + C q): θ̈ S here, θ̈ C q with the elastic forces.
                 f.copy_from(&self.arm.coupling);
                 *f *= -hub.accel_rad_s2;
@@ -576,12 +552,18 @@ impl Dynamics for ArmSystem<'_> {
                 self.add_elastic_forces(&hub, trig, q, qd, elastic);
                 self.add_contact_forces(&hub, q, qd, Some(&mut hub_force), elastic);
                 f[0] = hub_force;
+                drop(scratch);
                 self.add_actuator_forces(x.as_slice(), v.as_slice(), f.as_mut_slice());
+                self.add_free_hub_head_forces(x, v, f);
             }
         }
     }
 
     fn solve_mass(&self, _t: f64, x: &DVector<f64>, rhs: &DVector<f64>, out: &mut DVector<f64>) -> bool {
+        if self.arm.head.is_some() {
+            // The head's mass moves with ψ: the integrator factorises.
+            return false;
+        }
         match self.drive {
             HubDrive::Prescribed(_) => {
                 out.gemv(1.0, &self.arm.mass_inverse, rhs, 0.0);
@@ -597,6 +579,31 @@ impl Dynamics for ArmSystem<'_> {
     /// Exact for a prescribed hub; for a free hub the derivative of the mass matrix is left
     /// out (a quasi-Newton iteration that converges in a few steps).
     fn tangents(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, k: &mut DMatrix<f64>, c: &mut DMatrix<f64>) {
+        if self.arm.head.is_some() {
+            return self.tangents_with_head(t, x, v, k, c);
+        }
+        self.arm_tangents(t, x, v, k, c);
+    }
+
+    fn first_order_dofs(&self) -> usize {
+        self.drive.plant().map_or(0, |p| p.first_order_dofs())
+    }
+
+    fn is_linear(&self) -> bool {
+        matches!(self.drive, HubDrive::Prescribed(_)) && self.contacts.is_empty() && self.arm.head.is_none()
+    }
+}
+
+impl ArmSystem<'_> {
+    /// The arm's tangents over its own coordinates (a head's are added by the caller).
+    pub(super) fn arm_tangents(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        k: &mut DMatrix<f64>,
+        c: &mut DMatrix<f64>,
+    ) {
         let a = self.arm;
         if let HubDrive::Prescribed(profile) = self.drive {
             // In place: this runs at every Newton iteration.
@@ -643,14 +650,6 @@ impl Dynamics for ArmSystem<'_> {
         c.view_mut((0, 1), (1, n)).copy_from(&(2.0 * w * spin_arm).transpose());
         self.add_free_hub_contact_tangents(&hub, &q, &qd, k, c);
         self.add_actuator_tangents(x, v, k, c);
-    }
-
-    fn first_order_dofs(&self) -> usize {
-        self.drive.plant().map_or(0, |p| p.first_order_dofs())
-    }
-
-    fn is_linear(&self) -> bool {
-        matches!(self.drive, HubDrive::Prescribed(_)) && self.contacts.is_empty()
     }
 }
 

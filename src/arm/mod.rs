@@ -23,7 +23,9 @@
 
 mod contact;
 mod dynamics;
+mod head;
 mod linear;
+mod pin;
 mod products;
 mod residual;
 mod sim;
@@ -37,9 +39,10 @@ use crate::drive::DriveError;
 use crate::integrate::IntegrateError;
 
 pub use contact::{ArmContact, ContactState, PointContact};
-pub(crate) use dynamics::ArmPin;
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
+pub use head::{HeadModel, HeadState};
 pub use linear::LinearSystem;
+pub(crate) use pin::ArmPin;
 pub use sim::{ArmSample, ArmSimulation, Energies};
 
 /// Standard gravity, m/s².
@@ -163,6 +166,8 @@ pub struct ArmModel {
     /// First moment of mass about the pivot, kg·m.
     pub first_moment_kg_m: f64,
     tip_rows: [DVector<f64>; 3],
+    /// The tilting head turning on the arm, if the robot has one ([`Self::with_head`]).
+    pub head: Option<HeadModel>,
 }
 
 impl ArmModel {
@@ -259,6 +264,7 @@ impl ArmModel {
             fidelity,
             options,
             beam,
+            head: None,
         })
     }
 

@@ -3,11 +3,12 @@
 use std::borrow::Cow;
 use std::sync::Arc;
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
-use super::dynamics::{ArmPin, HubCache};
+use super::dynamics::HubCache;
+use super::pin::ArmPin;
 use super::products::dot;
-use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HubDrive};
+use super::{ArmContact, ArmError, ArmModel, ArmSystem, GeneralizedLoad, HeadState, HubDrive};
 use crate::actuator::{Actuator, ActuatorOutputs, ActuatorPlant};
 use crate::drive::DriveState;
 use crate::integrate::{Integrator, IntegratorKind, State, StepControl};
@@ -87,8 +88,25 @@ impl ArmSimulation {
         let start_rad = match drive {
             HubDrive::Prescribed(ref p) => p.sample(0.0).angle_rad,
             HubDrive::Free { .. } => 0.0,
+            HubDrive::Actuated(_) if arm.head.is_some() => {
+                return Err(ArmError::InvalidParameter {
+                    name: "head".into(),
+                    value: f64::NAN,
+                    allowed: "a tilting head under a prescribed or free hub (not yet under an actuator)".into(),
+                });
+            }
             HubDrive::Actuated(plant) => return Self::held_by(arm, plant, integrator),
         };
+        if arm.head.is_some() {
+            let (q0, head) = super::head::static_with_head(&arm, start_rad)?;
+            let free = usize::from(drive.hub_is_free());
+            let x = DVector::from_iterator(
+                free + n + 1,
+                std::iter::repeat_n(0.0, free).chain(q0.iter().copied()).chain([head.angle_rad]),
+            );
+            let v = DVector::zeros(x.len());
+            return Self::from_coordinates(arm, drive, integrator, x, v);
+        }
         let q0 = arm.static_deflection(start_rad)?;
         Self::with_initial(arm, drive, integrator, q0, DVector::zeros(n))
     }
@@ -131,6 +149,9 @@ impl ArmSimulation {
                 allowed: format!("{n} elastic coordinates"),
             });
         }
+        // A tilting head starts at its rest pose, at rest on the arm.
+        let head = |z: DVector<f64>| z.push(0.0);
+        let (q0, qd0) = if arm.head.is_some() { (head(q0), head(qd0)) } else { (q0, qd0) };
         let (x, v) = match &drive {
             HubDrive::Prescribed(_) => (q0, qd0),
             HubDrive::Free { .. } => (prepend(0.0, &q0), prepend(0.0, &qd0)),
@@ -194,6 +215,22 @@ impl ArmSimulation {
         Ok(())
     }
 
+    /// Sets the tilting head's angle and rate (an initial condition).
+    pub fn set_head_state(&mut self, head: HeadState) -> Result<(), ArmError> {
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
+        let Some(i) = system.head_index() else {
+            return Err(ArmError::InvalidParameter {
+                name: "head".into(),
+                value: head.angle_rad,
+                allowed: "an arm with a tilting head (a spring hinge in its URDF)".into(),
+            });
+        };
+        (self.state.x[i], self.state.v[i]) = (head.angle_rad, head.rate_rad_s);
+        self.state.refresh_acceleration(&system)?;
+        self.integrator.reset();
+        Ok(())
+    }
+
     /// Current time, s.
     pub fn time_s(&self) -> f64 {
         self.state.t
@@ -238,7 +275,7 @@ impl ArmSimulation {
     /// actuator's own equations linearly, so the state's acceleration there is brought up to
     /// date exactly (its mass is diagonal and apart from the arm's: no solve).
     fn sample_controller(&mut self) {
-        let own = 1 + self.arm.elastic_dofs();
+        let own = 1 + self.arm.elastic_dofs() + self.arm.head_dofs();
         let HubDrive::Actuated(plant) = &mut self.drive else { return };
         let s = &mut self.state;
         let output = plant.controller.output;
@@ -283,7 +320,7 @@ impl ArmSimulation {
         let [ru, rv, _] = self.arm.tip_rows();
         let n = self.arm.elastic_dofs();
         let (hub_error_rad, q_error) = match self.drive {
-            HubDrive::Prescribed(_) => (0.0, error.as_slice()),
+            HubDrive::Prescribed(_) => (0.0, &error.as_slice()[..n]),
             HubDrive::Free { .. } | HubDrive::Actuated(_) => (error[0], &error.as_slice()[1..1 + n]),
         };
         Some(dot(ru, q_error).abs().max((dot(rv, q_error) + self.arm.length_m() * hub_error_rad).abs()))
@@ -326,16 +363,15 @@ impl ArmSimulation {
             if self.state.x.is_empty() {
                 continue;
             }
-            let coupling = &self.arm.coupling + &self.arm.gyroscopic * &self.state.x;
-            let dqd = self
-                .arm
-                .mass
-                .clone()
+            let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
+            let coupling = system.hub_column(tj, &self.state.x);
+            let mut mass = DMatrix::zeros(coupling.len(), coupling.len());
+            crate::integrate::Dynamics::mass_matrix(&system, tj, &self.state.x, &mut mass);
+            let dqd = mass
                 .lu()
                 .solve(&(-jump * coupling))
                 .ok_or(ArmError::Integrate(crate::integrate::IntegrateError::SingularMatrix { t: tj }))?;
             self.state.v += dqd;
-            let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
             self.state.refresh_acceleration(&system)?;
             self.integrator.reset();
         }
@@ -365,7 +401,13 @@ impl ArmSimulation {
     /// prescribed hub (q and q̇ are the integrator's coordinates), copied under a free one.
     pub fn kinematics(&self) -> (DriveState, Cow<'_, DVector<f64>>, Cow<'_, DVector<f64>>) {
         let s = &self.state;
+        let n = self.arm.elastic_dofs();
         match &self.drive {
+            HubDrive::Prescribed(profile) if self.arm.head.is_some() => (
+                self.hub.at(profile, s.t).0,
+                Cow::Owned(s.x.rows(0, n).into_owned()),
+                Cow::Owned(s.v.rows(0, n).into_owned()),
+            ),
             HubDrive::Prescribed(profile) => (self.hub.at(profile, s.t).0, Cow::Borrowed(&s.x), Cow::Borrowed(&s.v)),
             HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 let (mut hub, q, qd) = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub)
@@ -381,11 +423,28 @@ impl ArmSimulation {
     pub fn elastic_accelerations(&self) -> Cow<'_, DVector<f64>> {
         let a = &self.state.a;
         match self.drive {
+            HubDrive::Prescribed(_) if self.arm.head.is_some() => {
+                Cow::Owned(a.rows(0, self.arm.elastic_dofs()).into_owned())
+            }
             HubDrive::Prescribed(_) => Cow::Borrowed(a),
             HubDrive::Free { .. } | HubDrive::Actuated(_) => {
                 Cow::Owned(a.rows(1, self.arm.elastic_dofs()).into_owned())
             }
         }
+    }
+
+    /// The tilting head's angle relative to the arm's section, and its rate, if there is one.
+    pub fn head_state(&self) -> Option<HeadState> {
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
+        system.head_state(&self.state.x, &self.state.v)
+    }
+
+    /// What a tilting head puts on the arm beyond the mass the beam carries at its hinge
+    /// (hub-frame point loads; none without a head), for the section forces.
+    pub fn head_loads_on_arm(&self) -> Vec<crate::point_load::PointLoad<crate::point_load::Hub>> {
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
+        let s = &self.state;
+        system.head_loads_on_arm(s.t, &s.x, &s.v, &s.a)
     }
 
     /// Outputs at the current state.
@@ -402,7 +461,17 @@ impl ArmSimulation {
         let w = hub.rate_rad_s;
         // World velocity: R(θ)[ṙ + θ̇ k × r] with r = (L + u, v) in the hub frame.
         let vel_body = [ud - w * v, vd + w * (l + u)];
-        let (mut drive_torque_n_m, energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
+        let (mut drive_torque_n_m, mut energies) = system.torque_and_energies(&hub, (sn, cs), &q, &qd, &qdd);
+        if let Some((torque_n_m, [kinetic_j, strain_j, gravity_j])) =
+            system.head_torque_and_energies(s.t, &s.x, &s.v, &s.a)
+        {
+            if !self.drive.hub_is_free() {
+                drive_torque_n_m += torque_n_m;
+            }
+            energies.kinetic_j += kinetic_j;
+            energies.strain_j += strain_j;
+            energies.gravity_j += gravity_j;
+        }
         let actuator = system.actuator_outputs(s.t, s.x.as_slice(), s.v.as_slice());
         if let Some(outputs) = &actuator {
             drive_torque_n_m = outputs.hub_torque_n_m;

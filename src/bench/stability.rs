@@ -110,7 +110,7 @@ pub fn undamped_arm(model: &Model, fidelity: Fidelity) -> Result<ArmModel, Scene
     let spec = model.beam_spec()?;
     let beam = BeamModel::new(spec)?;
     let options = ArmOptions { damping_ratios: vec![0.0], ..model.arm_options() };
-    Ok(ArmModel::new(beam, fidelity, options)?)
+    Ok(ArmModel::new(beam, fidelity, options)?.with_head(model.robot.head.as_ref())?)
 }
 
 /// Whether `integrator` at `step_s` keeps the undamped arm's vibration bounded (module doc).

@@ -53,6 +53,8 @@ pub struct RunViews {
     pub actuator: ActuatorViews,
     /// A held string's tip deflection.
     pub string: bool,
+    /// A tilting head's angle on its hinge.
+    pub head: bool,
     /// The sign-off's stress at the worst station and pin loads.
     pub sign_off: bool,
     /// The 3D view's camera (a run with frames).
@@ -65,6 +67,7 @@ impl RunViews {
         RunViews {
             actuator: ActuatorViews::of(&series.actuator),
             string: !series.string_tip_deflection_m.is_empty(),
+            head: !series.head_angle_rad.is_empty(),
             sign_off: series.stress.steps() > 0,
             eye: series.layout.as_ref().map(|l| Eye::framing_the_lift(l.pivot_m, l.length_m)),
         }
@@ -72,7 +75,7 @@ impl RunViews {
 }
 
 /// The 3D scene left; contact force, tip deflection, drive torque, a held string's tip
-/// deflection, the sign-off's stress and pin loads, an actuator's tracking error and chamber pressures, and the event log one above
+/// deflection, a tilting head's angle, the sign-off's stress and pin loads, an actuator's tracking error and chamber pressures, and the event log one above
 /// the other on the right.
 pub fn run_layout(views: RunViews) -> BlueprintLayout {
     let actuator = views.actuator;
@@ -84,6 +87,9 @@ pub fn run_layout(views: RunViews) -> BlueprintLayout {
     ];
     if views.string {
         plots.push(view("TimeSeries", "string tip deflection (m)", "plots/string/tip_deflection"));
+    }
+    if views.head {
+        plots.push(view("TimeSeries", "head angle (°)", "plots/head/angle_deg"));
     }
     if views.sign_off {
         plots.push(view("TimeSeries", "stress at the worst station (Pa)", "plots/stress"));

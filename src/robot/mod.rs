@@ -5,7 +5,10 @@
 //! link along its x axis, and rigid links carried by the arm (hand, gripper palm, jaws) through
 //! fixed or prismatic joints. Each carried link becomes a concentrated mass at the arm station
 //! of its centre of mass; its offset across the arm and out of the plane is kept for geometry only.
+//! Links below a revolute joint with a spring hinge form a tilting head ([`TiltingHead`]): one
+//! rigid body turning on the arm.
 
+mod head;
 pub mod pipes;
 mod urdf;
 
@@ -15,6 +18,7 @@ use thiserror::Error;
 
 use crate::fatigue::SnCurve;
 
+pub use head::{HingeLaw, TiltingHead};
 pub use pipes::{
     ConnectionPiece, CustomPipeSpec, Joints, PIPE_CATALOGUE, Pipe, PipeSize, PipeString, Product, Range, StringSpec,
     find_row, pipe_size,
@@ -158,6 +162,9 @@ pub struct CarriedBody {
     pub rotary_inertia_kg_m2: f64,
     /// Collision shapes in the arm frame.
     pub shapes: Vec<PlacedShape>,
+    /// Whether it hangs below the tilting head's hinge (and turns with it); its station and
+    /// shapes are then given at the hinge's rest pose.
+    pub tilts: bool,
 }
 
 /// The lift joint.
@@ -203,12 +210,16 @@ pub struct Robot {
     pub arm: FlexibleLink,
     /// Rigid links carried by the arm.
     pub carried: Vec<CarriedBody>,
+    /// The tilting head, where a spring hinge carries links.
+    pub head: Option<TiltingHead>,
     /// Shapes of the base (world-fixed), in the world frame.
     pub base_shapes: Vec<PlacedShape>,
 }
 
 impl Robot {
     /// The beam description of the arm with its carried bodies, plus `extra` masses (payload).
+    /// A tilting head's whole mass sits at its hinge's station: the arm carries it there, and
+    /// what turns about the hinge is the head's own coordinate ([`crate::arm::HeadModel`]).
     pub fn beam_spec(&self, extra: &[ConcentratedMass]) -> Result<BeamSpec, BeamError> {
         let segments = self
             .arm
@@ -219,13 +230,19 @@ impl Robot {
         let masses = self
             .carried
             .iter()
-            .filter(|b| b.mass_kg > 0.0)
+            .filter(|b| b.mass_kg > 0.0 && !b.tilts)
             .map(|b| ConcentratedMass {
                 name: b.name.clone(),
                 position_m: b.station_m,
                 mass_kg: b.mass_kg,
                 rotary_inertia_kg_m2: b.rotary_inertia_kg_m2,
             })
+            .chain(self.head.iter().filter(|h| h.mass_kg > 0.0).map(|h| ConcentratedMass {
+                name: h.joint.clone(),
+                position_m: h.hinge_station_m,
+                mass_kg: h.mass_kg,
+                rotary_inertia_kg_m2: 0.0,
+            }))
             .chain(extra.iter().cloned())
             .collect();
         let spec = BeamSpec { segments, masses, elements: self.arm.elements, member: None };

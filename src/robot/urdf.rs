@@ -30,7 +30,11 @@ use std::path::Path;
 use nalgebra::{Isometry3, Point3, Translation3, UnitQuaternion};
 
 use super::SegmentChecks;
-use super::{ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape};
+use super::{
+    ArmSegment, CarriedBody, FlexibleLink, LiftJoint, Mount, PlacedShape, Robot, RobotError, Shape, TiltingHead,
+};
+
+mod head;
 use crate::actuator::{Cylinder, Cylinders, ServoMachine, ValveFeed};
 use crate::beam::{BeamModel, Material, SectionShape};
 
@@ -53,7 +57,7 @@ pub fn load_robot(path: &Path) -> Result<Robot, RobotError> {
     let arm = ctx.flexible_link(&doc)?;
     let mut lift = ctx.lift_joint(&urdf, &arm.name)?;
     (lift.0.cylinders, lift.0.servo) = ctx.lift_machines(&doc, &lift.0.name)?;
-    let carried = ctx.carried_bodies(&urdf, &arm)?;
+    let (carried, head) = ctx.carried_bodies(&urdf, &doc, &arm)?;
     let base_shapes = urdf
         .links
         .iter()
@@ -61,7 +65,7 @@ pub fn load_robot(path: &Path) -> Result<Robot, RobotError> {
         .map(|l| ctx.collision_shapes(l, &Isometry3::identity()))
         .transpose()?
         .unwrap_or_default();
-    let robot = Robot { name: urdf.name.clone(), source: path.into(), lift: lift.0, arm, carried, base_shapes };
+    let robot = Robot { name: urdf.name.clone(), source: path.into(), lift: lift.0, arm, carried, head, base_shapes };
     ctx.check_beam(&robot)?;
     Ok(robot)
 }
@@ -457,58 +461,111 @@ impl Context<'_> {
         }
     }
 
-    /// Links hanging from the arm through fixed or prismatic joints, in the arm frame.
-    fn carried_bodies(&self, urdf: &urdf_rs::Robot, arm: &FlexibleLink) -> Result<Vec<CarriedBody>, RobotError> {
-        let mut frames = VecDeque::from([(arm.name.clone(), Isometry3::identity(), Mount::Fixed)]);
+    /// Links hanging from the arm through fixed, prismatic or revolute joints, in the arm frame,
+    /// and the tilting head where a revolute joint's hinge is a spring.
+    fn carried_bodies(
+        &self,
+        urdf: &urdf_rs::Robot,
+        doc: &roxmltree::Document<'_>,
+        arm: &FlexibleLink,
+    ) -> Result<(Vec<CarriedBody>, Option<TiltingHead>), RobotError> {
+        let mut frames = VecDeque::from([(arm.name.clone(), Isometry3::identity(), Mount::Fixed, false)]);
         let mut seen = HashSet::from([arm.name.clone()]);
-        let mut bodies = Vec::new();
-        while let Some((parent, parent_pose, parent_mount)) = frames.pop_front() {
+        let (mut bodies, mut hinge) = (Vec::new(), None);
+        while let Some((parent, parent_pose, parent_mount, parent_tilts)) = frames.pop_front() {
             for joint in urdf.joints.iter().filter(|j| j.parent.link == parent) {
                 let key = format!("joint[{}]", joint.name);
                 let pose = parent_pose * pose_of(&joint.origin);
+                let mut tilts = parent_tilts;
                 let mount = match joint.joint_type {
                     urdf_rs::JointType::Fixed => parent_mount,
-                    urdf_rs::JointType::Prismatic => {
-                        let axis = pose.rotation * nalgebra::Vector3::from(joint.axis.xyz.0);
-                        if joint.limit.effort.is_nan() || joint.limit.effort <= 0.0 || axis.norm() < 1e-9 {
-                            return Err(
-                                self.invalid(&key, "a prismatic joint needs a non-zero axis and limit effort > 0 (N)")
-                            );
+                    urdf_rs::JointType::Prismatic => self.prismatic(joint, &pose, &key)?,
+                    urdf_rs::JointType::Revolute | urdf_rs::JointType::Continuous => {
+                        if let head::Hinge::Free(law) = self.hinge(doc, &joint.name)? {
+                            if parent_tilts || hinge.is_some() {
+                                return Err(self.invalid(&key, "a second spring hinge: allowed one tilting head"));
+                            }
+                            hinge = Some(self.hinge_on_arm(joint, &pose, law, arm.length_m())?);
+                            tilts = true;
                         }
-                        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
-                        if !(lower.is_finite() && upper.is_finite() && lower < upper) {
-                            return Err(self.invalid(
-                                format!("{key}.limit"),
-                                format!("lower = {lower}, upper = {upper}: a prismatic joint needs lower < upper (m)"),
-                            ));
-                        }
-                        let axis = axis.normalize();
-                        Mount::Prismatic {
-                            axis: [axis.x, axis.y, axis.z],
-                            effort_n: joint.limit.effort,
-                            travel_m: [lower, upper],
-                        }
+                        parent_mount
                     }
                     ref other => {
                         return Err(self.invalid(
                             &key,
-                            format!("type {other:?}: links on the arm hang on fixed or prismatic joints"),
+                            format!("type {other:?}: links on the arm hang on fixed, prismatic or revolute joints"),
                         ));
                     }
                 };
                 if !seen.insert(joint.child.link.clone()) {
                     return Err(self.invalid(&key, "the link tree has a loop"));
                 }
-                let pose = parent_pose * pose_of(&joint.origin);
                 let link =
                     urdf.links.iter().find(|l| l.name == joint.child.link).ok_or_else(|| {
                         self.invalid(&key, format!("child link `{}` is not defined", joint.child.link))
                     })?;
-                bodies.push(self.carried_body(link, &pose, mount, arm.length_m())?);
-                frames.push_back((link.name.clone(), pose, mount));
+                bodies.push(self.carried_body(link, &pose, mount, tilts, arm.length_m())?);
+                frames.push_back((link.name.clone(), pose, mount, tilts));
             }
         }
-        Ok(bodies)
+        let head = hinge.map(|h| h.with_links(&bodies));
+        Ok((bodies, head))
+    }
+
+    /// A prismatic joint's mount: its axis in the arm frame, effort and travel.
+    fn prismatic(&self, joint: &urdf_rs::Joint, pose: &Isometry3<f64>, key: &str) -> Result<Mount, RobotError> {
+        let axis = pose.rotation * nalgebra::Vector3::from(joint.axis.xyz.0);
+        if joint.limit.effort.is_nan() || joint.limit.effort <= 0.0 || axis.norm() < 1e-9 {
+            return Err(self.invalid(key, "a prismatic joint needs a non-zero axis and limit effort > 0 (N)"));
+        }
+        let (lower, upper) = (joint.limit.lower, joint.limit.upper);
+        if !(lower.is_finite() && upper.is_finite() && lower < upper) {
+            return Err(self.invalid(
+                format!("{key}.limit"),
+                format!("lower = {lower}, upper = {upper}: a prismatic joint needs lower < upper (m)"),
+            ));
+        }
+        let axis = axis.normalize();
+        Ok(Mount::Prismatic { axis: [axis.x, axis.y, axis.z], effort_n: joint.limit.effort, travel_m: [lower, upper] })
+    }
+
+    /// A spring hinge's place on the arm: its axis normal to the lift plane, on the arm.
+    fn hinge_on_arm(
+        &self,
+        joint: &urdf_rs::Joint,
+        pose: &Isometry3<f64>,
+        law: super::HingeLaw,
+        length_m: f64,
+    ) -> Result<TiltingHead, RobotError> {
+        let key = format!("joint[{}]", joint.name);
+        let axis = pose.rotation * nalgebra::Vector3::from(joint.axis.xyz.0);
+        if axis.norm() < 1e-9 || axis.z.abs() < (1.0 - 1e-9) * axis.norm() {
+            return Err(self.invalid(
+                format!("{key}.axis"),
+                format!(
+                    "({:.3}, {:.3}, {:.3}) in the arm frame: a tilting head turns about an axis normal to the lift \
+                     plane (the arm's z)",
+                    axis.x, axis.y, axis.z
+                ),
+            ));
+        }
+        let at = pose.translation.vector;
+        if !(0.0..=length_m).contains(&at.x) {
+            return Err(self.invalid(
+                format!("{key}.origin"),
+                format!("the hinge is at arm station {:.3} m, off the arm: allowed 0 ..= {length_m} m", at.x),
+            ));
+        }
+        Ok(TiltingHead {
+            joint: joint.name.clone(),
+            hinge_station_m: at.x,
+            hinge_lateral_m: at.y,
+            law,
+            mass_kg: 0.0,
+            centre_of_mass_m: [0.0; 2],
+            inertia_kg_m2: 0.0,
+            links: Vec::new(),
+        })
     }
 
     fn carried_body(
@@ -516,6 +573,7 @@ impl Context<'_> {
         link: &urdf_rs::Link,
         pose: &Isometry3<f64>,
         mount: Mount,
+        tilts: bool,
         length_m: f64,
     ) -> Result<CarriedBody, RobotError> {
         let key = format!("link[{}].inertial", link.name);
@@ -527,7 +585,8 @@ impl Context<'_> {
         if !(izz.is_finite() && izz >= 0.0) {
             return Err(self.invalid(format!("{key}.inertia@izz"), format!("{izz}: allowed >= 0 kg·m²")));
         }
-        if mass_kg > 0.0 && !(0.0..=length_m).contains(&cg.x) {
+        // A tilting head may reach past the arm's end: its hinge is what must be on the arm.
+        if mass_kg > 0.0 && !tilts && !(0.0..=length_m).contains(&cg.x) {
             return Err(self.invalid(
                 format!("link[{}]", link.name),
                 format!("centre of mass at arm station {:.3} m is off the arm: allowed 0 ..= {length_m} m", cg.x),
@@ -542,6 +601,7 @@ impl Context<'_> {
             mass_kg,
             rotary_inertia_kg_m2: izz,
             shapes: self.collision_shapes(link, pose)?,
+            tilts,
         })
     }
 

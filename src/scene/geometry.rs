@@ -64,6 +64,9 @@ pub struct ArmPiece {
     pub near_pad: bool,
     /// Its collision shape, in its own frame.
     pub shape: SharedShape,
+    /// The tilting head's hinge [station, across the arm] (m), for a piece that turns with it
+    /// (its station and offset are then its rest pose's, and its rows the hinge station's).
+    pub hinge_m: Option<[f64; 2]>,
 }
 
 impl ArmPiece {
@@ -96,6 +99,7 @@ impl ArmPiece {
             rows: StationRows([DVector::zeros(0), DVector::zeros(0), DVector::zeros(0)]),
             near_pad: true,
             shape,
+            hinge_m: None,
         }
     }
 
@@ -171,7 +175,9 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
                 ),
                 Shape::Sphere { radius_m } => (SharedShape::ball(radius_m), rotation, [radius_m; 3]),
             };
-            pieces.push(ArmPiece::new(&body.name, placed.position_m, rotation, half, shape));
+            let mut piece = ArmPiece::new(&body.name, placed.position_m, rotation, half, shape);
+            piece.hinge_m = robot.head.as_ref().filter(|_| body.tilts).map(|h| [h.hinge_station_m, h.hinge_lateral_m]);
+            pieces.push(piece);
         }
     }
     if let Some(held) = model.payload.string()
@@ -194,12 +200,22 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
     pieces
 }
 
-/// World pose of a piece from the arm's state: the section at its station carries it rigidly.
-pub fn pose_piece(piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, pivot_m: [f64; 3]) -> Pose {
-    let x = piece.station_m + piece.axial_shift_m;
+/// World pose of a piece from the arm's state: the section at its station carries it rigidly,
+/// or, on the tilting head, the section at the hinge turned by the head's angle `head_rad`.
+pub fn pose_piece(piece: &ArmPiece, hub: &DriveState, q: &DVector<f64>, head_rad: f64, pivot_m: [f64; 3]) -> Pose {
     let [u, v, slope] = piece.rows.displacement(q);
-    let y = piece.lateral_m;
-    let body = [x + u - y * slope, y + v];
+    let (body, slope) = match piece.hinge_m {
+        Some([hx, hy]) => {
+            let turn = slope + head_rad;
+            let (st, ct) = turn.sin_cos();
+            let [ox, oy] = [piece.station_m - hx, piece.lateral_m - hy];
+            ([hx + u - hy * slope + ct * ox - st * oy, hy + v + st * ox + ct * oy], turn)
+        }
+        None => {
+            let (x, y) = (piece.station_m + piece.axial_shift_m, piece.lateral_m);
+            ([x + u - y * slope, y + v], slope)
+        }
+    };
     let (s, c) = hub.angle_rad.sin_cos();
     let translation = Vector::new(
         pivot_m[0] + c * body[0] - s * body[1],
@@ -224,12 +240,14 @@ pub struct ArmView<'a> {
     pub pieces: &'a [ArmPiece],
     /// The lift joint's pivot in the world, m.
     pub pivot_m: [f64; 3],
+    /// The tilting head's angle on its hinge, rad (0 without one).
+    pub head_rad: f64,
 }
 
 impl ArmView<'_> {
     /// World pose of a piece riding on the arm.
     pub fn pose(&self, piece: &ArmPiece) -> Pose {
-        pose_piece(piece, &self.hub, self.q, self.pivot_m)
+        pose_piece(piece, &self.hub, self.q, self.head_rad, self.pivot_m)
     }
 
     /// How far ahead a contact must be seen over a step of `h_s`: three times the travel of the

@@ -81,6 +81,12 @@ pub enum SceneError {
     /// A friction clamp on a body without a collision shape to carry its jaws.
     #[error("key `payload.at`: `{0}` has no collision shape to carry the jaws")]
     ClampWithoutPalm(String),
+    /// A piece of the tilting head that can reach a pad or a structure.
+    #[error(
+        "`{0}` turns on the tilting head and can reach a pad or a structure: contact on a tilting head is not \
+         modelled yet (lock its hinge, kind=\"locked\", or keep it clear)"
+    )]
+    ContactOnTiltingHead(String),
     /// The run's energy grew without a source, or its values stopped being finite.
     #[error("the run diverged at t = {t_s:.4} s: {what}. Advice: {advice}")]
     Diverged { t_s: f64, what: String, advice: String },
@@ -122,7 +128,7 @@ impl Scene {
         let string = model.payload.string().map(|held| crate::sensor::string::StringProbe::new(held, &arm.arm));
         let string_normal_offset_m = pieces.iter().find(|p| p.side == Side::String).map_or(0.0, |p| p.normal_offset_m);
         for piece in &mut pieces {
-            piece.rows = arm.arm.station_rows(piece.station_m);
+            piece.rows = arm.arm.station_rows(piece.hinge_m.map_or(piece.station_m, |[station, _]| station));
         }
         // A flexible string rides on its own sections: cut into segments that do.
         if string.as_ref().is_some_and(|s| s.is_flexible())
@@ -139,6 +145,9 @@ impl Scene {
             pairs.extend(sides.iter().map(|side| ContactPair::structure(structure, *side)));
         }
         mark_pieces_near(&mut pieces, &pairs, pivot);
+        if let Some(piece) = pieces.iter().find(|p| p.hinge_m.is_some() && p.near_pad) {
+            return Err(SceneError::ContactOnTiltingHead(piece.name.clone()));
+        }
         let length = arm.arm.length_m();
         let centreline = (0..=CENTRELINE_STATIONS)
             .map(|i| length * i as f64 / CENTRELINE_STATIONS as f64)
@@ -183,7 +192,15 @@ impl Scene {
     /// Calls `f` with a view of the arm's current state.
     fn with_view<T>(&self, f: impl FnOnce(&ArmView) -> T) -> T {
         let (hub, q, qd) = self.arm.kinematics();
-        let view = ArmView { arm: &self.arm.arm, hub, q: &q, qd: &qd, pieces: &self.pieces, pivot_m: self.pivot_m };
+        let view = ArmView {
+            arm: &self.arm.arm,
+            hub,
+            q: &q,
+            qd: &qd,
+            pieces: &self.pieces,
+            pivot_m: self.pivot_m,
+            head_rad: self.head_rad(),
+        };
         f(&view)
     }
 
@@ -195,7 +212,15 @@ impl Scene {
         contacts.clear();
         {
             let (hub, q, qd) = self.arm.kinematics();
-            let arm = ArmView { arm: &self.arm.arm, hub, q: &q, qd: &qd, pieces: &self.pieces, pivot_m: self.pivot_m };
+            let arm = ArmView {
+                arm: &self.arm.arm,
+                hub,
+                q: &q,
+                qd: &qd,
+                pieces: &self.pieces,
+                pivot_m: self.pivot_m,
+                head_rad: self.head_rad(),
+            };
             for source in &mut self.sources {
                 source.pose(&arm);
             }
@@ -248,7 +273,15 @@ impl Scene {
     /// measures its forces on the arm's new state.
     fn advance_and_measure(&mut self, h_s: Option<f64>) {
         let (hub, q, qd) = self.arm.kinematics();
-        let arm = ArmView { arm: &self.arm.arm, hub, q: &q, qd: &qd, pieces: &self.pieces, pivot_m: self.pivot_m };
+        let arm = ArmView {
+            arm: &self.arm.arm,
+            hub,
+            q: &q,
+            qd: &qd,
+            pieces: &self.pieces,
+            pivot_m: self.pivot_m,
+            head_rad: self.head_rad(),
+        };
         for (source, span) in self.sources.iter_mut().zip(&self.spans) {
             if let Some(h_s) = h_s {
                 source.advance(&arm, h_s);
@@ -260,6 +293,11 @@ impl Scene {
     /// Where the `compliant` method finds its contacts: `pad-face` or `pipeline`.
     pub fn detection(&self) -> Detection {
         self.detection
+    }
+
+    /// The tilting head's angle on its hinge, rad (0 without one).
+    fn head_rad(&self) -> f64 {
+        self.arm.head_state().map_or(0.0, |h| h.angle_rad)
     }
 
     /// The hub state at the arm's current time.
@@ -345,7 +383,8 @@ impl Scene {
     pub fn frame(&self) -> Frame {
         // The kinematics only: the torque and energies `sample` would compute are not drawn.
         let (hub, q, _) = self.arm.kinematics();
-        let pieces = self.drawn_pieces().map(|p| pose_piece(p, &hub, &q, self.pivot_m)).collect();
+        let head_rad = self.head_rad();
+        let pieces = self.drawn_pieces().map(|p| pose_piece(p, &hub, &q, head_rad, self.pivot_m)).collect();
         let pads = self.pairs().filter(|p| p.dampener().is_some()).map(|p| p.pose).collect();
         let contacts = self
             .pairs()

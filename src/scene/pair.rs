@@ -215,7 +215,7 @@ pub fn structure_in_rest_pose(model: &Model) -> Option<(usize, String)> {
     let q = DVector::zeros(0);
     // The pieces' rows are still empty: posed undeformed.
     let posed: Vec<(Pose, &ArmPiece)> =
-        pieces.iter().map(|p| (super::geometry::pose_piece(p, &hub, &q, model.robot.lift.pivot_m), p)).collect();
+        pieces.iter().map(|p| (super::geometry::pose_piece(p, &hub, &q, 0.0, model.robot.lift.pivot_m), p)).collect();
     model.structures.iter().enumerate().find_map(|(i, s)| {
         let pair = ContactPair::structure(s, Side::Arm);
         posed.iter().find_map(|(pose, piece)| {

@@ -280,6 +280,7 @@ impl StressProbe {
                 PairSide::String => self.on_string.push(load),
             }
         }
+        self.on_arm.extend(scene.arm.head_loads_on_arm());
         self.pins_world_n.clear();
         let readings = sample.actuator.as_ref().map_or(&[][..], |a| &a.cylinders[..]);
         for (i, (cylinder, rows)) in self.cylinders.iter().enumerate() {

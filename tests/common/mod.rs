@@ -94,6 +94,13 @@ pub const ARM_DYNAMICS: Area = Area {
     about: "The floating-frame arm against conservation laws, closed forms of the rigid arm, the hub-inertia \
             frequency equation, and the full finite-element arm as the finer model.",
 };
+pub const TILTING_HEAD: Area = Area {
+    order: 45,
+    title: "The tilting head",
+    about: "A rigid head on a hinge on the arm, its angle one more coordinate: against the compound pendulum, a \
+            finite-element model of the arm and head built in the test from the beam's own matrices, and the \
+            energy its equations must keep.",
+};
 pub const PIN: Area = Area {
     order: 50,
     title: "The cylinder's pin: residual flexibility",

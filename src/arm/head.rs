@@ -1,0 +1,484 @@
+//! A tilting head on the arm: a rigid body hinged on the arm's section at a station, its angle
+//! ψ (relative to that section, about the lift axis z, 0 at the URDF pose) one more coordinate
+//! of the arm's equations, solved in the same step as the hub and the modes.
+//!
+//! The arm's beam already carries the head's whole mass as a point at the hinge's station
+//! ([`crate::robot::Robot::beam_spec`]), with that point's centrifugal and gravity stiffening of
+//! the arm. What a point at the hinge misses is added here, exactly: the rigid head's mass matrix
+//! and forces over z = [θ, q, ψ] by its Jacobians (virtual power), less the point's.
+//!
+//! ```text
+//! c = h(q) + R(β) r₀,  h = (s + u_h, y + v_h),  β = φ_h + ψ      (hub frame)
+//! J_v = [k × c | H + (k × ρ) Φ_φ | k × ρ],  J_ω = [1 | Φ_φ | 1],  ρ = R(β) r₀
+//! M += m J_vᵀ J_v + J J_ωᵀ J_ω
+//! f += m J_vᵀ (g_hub − 2θ̇ k × ċ + θ̇² c + β̇² ρ) − (k_ψ ψ + c_ψ ψ̇) e_ψ
+//! ```
+//! and the same terms with r₀ = 0, J = 0, the hinge's point on the arm's axis, subtracted.
+
+use std::ops::AddAssign;
+
+use nalgebra::{DMatrix, DVector};
+
+use super::products::dot;
+use super::{ArmModel, ArmSystem, HubDrive};
+use crate::drive::DriveState;
+use crate::robot::TiltingHead;
+
+/// The head compiled against an arm model's coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HeadModel {
+    /// The head as the robot describes it.
+    pub head: TiltingHead,
+    /// Rows over q of the hinge point's (axial, transverse) displacement and of the section's
+    /// slope at the hinge station.
+    hinge_rows: [DVector<f64>; 3],
+    /// Rows over q of the hinge station's point on the arm's axis (where the beam carries the
+    /// head's mass).
+    axis_rows: [DVector<f64>; 2],
+}
+
+/// The head's angle ψ relative to the arm's section and its rate, rad and rad/s.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HeadState {
+    /// ψ, rad.
+    pub angle_rad: f64,
+    /// ψ̇, rad/s.
+    pub rate_rad_s: f64,
+}
+
+/// How much of the head's mass matrix over z = [θ, q, ψ] to write.
+pub(crate) enum HeadMass<'m> {
+    /// None: the forces alone.
+    None,
+    /// Its θ column (what a prescribed hub's θ̈ pushes on the rest).
+    HubColumn(&'m mut DVector<f64>),
+    /// All of it.
+    Full(&'m mut DMatrix<f64>),
+}
+
+/// The full configuration the head's terms read: the hub (θ, θ̇), q, q̇ and ψ.
+pub(crate) struct HeadFrame<'a> {
+    pub hub: (f64, f64),
+    pub q: &'a [f64],
+    pub qd: &'a [f64],
+    pub head: HeadState,
+}
+
+/// One body's kinematics in the hub frame: its centre, the centre's rate, its offset ρ from
+/// the hinge (turned) and the turn rate β̇.
+struct BodyPoint {
+    centre: [f64; 2],
+    rate: [f64; 2],
+    rho: [f64; 2],
+    turn_rate: f64,
+}
+
+impl HeadModel {
+    /// `head` on `arm`'s coordinates.
+    pub fn new(arm: &ArmModel, head: &TiltingHead) -> Self {
+        let [u, v, phi] = arm.station_rows(head.hinge_station_m).0;
+        let hinge_u = &u - head.hinge_lateral_m * &phi;
+        HeadModel { hinge_rows: [hinge_u, v.clone(), phi], axis_rows: [u, v], head: head.clone() }
+    }
+
+    /// The head's centre of mass in the hub frame, and its offset from the hinge there, m.
+    pub fn centre_of_mass_hub_m(&self, q: &[f64], head: HeadState) -> ([f64; 2], [f64; 2]) {
+        let p = self.head_point(q, &vec![0.0; q.len()], head);
+        (p.centre, p.rho)
+    }
+
+    fn head_point(&self, q: &[f64], qd: &[f64], head: HeadState) -> BodyPoint {
+        let [ru, rv, rphi] = &self.hinge_rows;
+        let h = &self.head;
+        let beta = dot(rphi, q) + head.angle_rad;
+        let turn_rate = dot(rphi, qd) + head.rate_rad_s;
+        let (sb, cb) = beta.sin_cos();
+        let [x0, y0] = h.centre_of_mass_m;
+        let rho = [cb * x0 - sb * y0, sb * x0 + cb * y0];
+        let centre = [h.hinge_station_m + dot(ru, q) + rho[0], h.hinge_lateral_m + dot(rv, q) + rho[1]];
+        let rate = [dot(ru, qd) - turn_rate * rho[1], dot(rv, qd) + turn_rate * rho[0]];
+        BodyPoint { centre, rate, rho, turn_rate }
+    }
+
+    fn axis_point(&self, q: &[f64], qd: &[f64]) -> BodyPoint {
+        let [ru, rv] = &self.axis_rows;
+        BodyPoint {
+            centre: [self.head.hinge_station_m + dot(ru, q), dot(rv, q)],
+            rate: [dot(ru, qd), dot(rv, qd)],
+            rho: [0.0; 2],
+            turn_rate: 0.0,
+        }
+    }
+
+    /// The head's forces over z = [θ, q, ψ] (size n + 2) and as much of its mass matrix as
+    /// `mass` asks, less the point at the hinge station the beam carries, gravity `g_m_s2`.
+    pub(crate) fn terms(&self, at: &HeadFrame, g_m_s2: f64, mass: HeadMass, force: &mut DVector<f64>) {
+        let n = at.q.len();
+        let m = self.head.mass_kg;
+        let body = self.head_point(at.q, at.qd, at.head);
+        let point = self.axis_point(at.q, at.qd);
+        let body_j = self.jacobian(&body, n, true);
+        let point_j = self.jacobian(&point, n, false);
+        force.fill(0.0);
+        let (theta, rate) = at.hub;
+        let gravity = [-g_m_s2 * theta.sin(), -g_m_s2 * theta.cos()];
+        for (sign, p, j) in [(1.0, &body, &body_j), (-1.0, &point, &point_j)] {
+            // a_vp = 2θ̇ k × ċ − θ̇² c − β̇² ρ: the acceleration at zero z̈.
+            let accel = [
+                -2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
+                2.0 * rate * p.rate[0] - rate * rate * p.centre[1] - p.turn_rate.powi(2) * p.rho[1],
+            ];
+            let load = [sign * m * (gravity[0] - accel[0]), sign * m * (gravity[1] - accel[1])];
+            force.gemv_tr(1.0, j, &DVector::from_column_slice(&load), 1.0);
+        }
+        force[n + 1] -= self.head.stiffness_n_m_per_rad() * at.head.angle_rad
+            + self.head.damping_n_m_s_per_rad() * at.head.rate_rad_s;
+        let mut spin = DVector::zeros(n + 2);
+        spin[0] = 1.0;
+        spin.rows_mut(1, n).copy_from(&self.hinge_rows[2]);
+        spin[n + 1] = 1.0;
+        let inertia = self.head.inertia_kg_m2;
+        match mass {
+            HeadMass::None => {}
+            HeadMass::HubColumn(column) => {
+                column.gemv_tr(m, &body_j, &body_j.column(0), 0.0);
+                column.gemv_tr(-m, &point_j, &point_j.column(0), 1.0);
+                column.axpy(inertia, &spin, 1.0);
+            }
+            HeadMass::Full(mass) => {
+                mass.gemm_tr(m, &body_j, &body_j, 0.0);
+                mass.gemm_tr(-m, &point_j, &point_j, 1.0);
+                mass.ger(inertia, &spin, &spin, 1.0);
+            }
+        }
+    }
+
+    /// The 2 × (n + 2) velocity Jacobian of a point over z = [θ, q, ψ] in the hub frame.
+    fn jacobian(&self, p: &BodyPoint, n: usize, turns: bool) -> DMatrix<f64> {
+        let mut j = DMatrix::zeros(2, n + 2);
+        j[(0, 0)] = -p.centre[1];
+        j[(1, 0)] = p.centre[0];
+        let [ru, rv] =
+            if turns { [&self.hinge_rows[0], &self.hinge_rows[1]] } else { [&self.axis_rows[0], &self.axis_rows[1]] };
+        for i in 0..n {
+            let phi = if turns { self.hinge_rows[2][i] } else { 0.0 };
+            j[(0, 1 + i)] = ru[i] - p.rho[1] * phi;
+            j[(1, 1 + i)] = rv[i] + p.rho[0] * phi;
+        }
+        if turns {
+            j[(0, n + 1)] = -p.rho[1];
+            j[(1, n + 1)] = p.rho[0];
+        }
+        j
+    }
+
+    /// Kinetic and potential energy the head adds to the arm's (the point at the hinge
+    /// station aside), gravity `g_m_s2`, J: [kinetic, hinge spring, gravity].
+    pub(crate) fn energies_j(&self, at: &HeadFrame, z_rate: &DVector<f64>, g_m_s2: f64) -> [f64; 3] {
+        let n = at.q.len();
+        let mut mass = DMatrix::zeros(n + 2, n + 2);
+        let mut force = DVector::zeros(n + 2);
+        self.terms(at, g_m_s2, HeadMass::Full(&mut mass), &mut force);
+        let kinetic = 0.5 * z_rate.dot(&(&mass * z_rate));
+        let spring = 0.5 * self.head.stiffness_n_m_per_rad() * at.head.angle_rad.powi(2);
+        let body = self.head_point(at.q, at.qd, at.head);
+        let point = self.axis_point(at.q, at.qd);
+        let d = [body.centre[0] - point.centre[0], body.centre[1] - point.centre[1]];
+        let (s, c) = at.hub.0.sin_cos();
+        let gravity = self.head.mass_kg * g_m_s2 * (s * d[0] + c * d[1]);
+        [kinetic, spring, gravity]
+    }
+}
+
+impl ArmModel {
+    /// This model with `head` turning on it (its mass already on the beam at the hinge station):
+    /// one more coordinate ψ, and the highest frequency the pair keeps, at rest, for an explicit
+    /// integrator's step.
+    pub fn with_head(mut self, head: Option<&TiltingHead>) -> Result<Self, super::ArmError> {
+        let Some(head) = head else { return Ok(self) };
+        let model = HeadModel::new(&self, head);
+        let n = self.elastic_dofs();
+        let zeros = vec![0.0; n];
+        let at = HeadFrame { hub: (0.0, 0.0), q: &zeros, qd: &zeros, head: HeadState::default() };
+        let (mut mass, mut force) = (DMatrix::zeros(n + 2, n + 2), DVector::zeros(n + 2));
+        model.terms(&at, 0.0, HeadMass::Full(&mut mass), &mut force);
+        let mut coupled_mass = mass.view((1, 1), (n + 1, n + 1)).into_owned();
+        let mut coupled_stiffness = DMatrix::zeros(n + 1, n + 1);
+        coupled_mass.view_mut((0, 0), (n, n)).add_assign(&self.mass);
+        coupled_stiffness.view_mut((0, 0), (n, n)).copy_from(&self.stiffness);
+        coupled_stiffness[(n, n)] = head.stiffness_n_m_per_rad();
+        let highest = crate::beam::solve_generalized(&coupled_stiffness, &coupled_mass)?.omegas_rad_s;
+        self.highest_omega_rad_s = self.highest_omega_rad_s.max(highest.last().copied().unwrap_or(0.0));
+        self.head = Some(model);
+        Ok(self)
+    }
+
+    /// Coordinates the head adds: 1 with a tilting head, else 0.
+    pub fn head_dofs(&self) -> usize {
+        usize::from(self.head.is_some())
+    }
+}
+
+impl ArmSystem<'_> {
+    /// Where the actuator's own coordinates start: after θ, q and the head's ψ.
+    pub(crate) fn own_start(&self) -> usize {
+        1 + self.arm.elastic_dofs() + self.arm.head_dofs()
+    }
+
+    /// Index of ψ among the integrator's coordinates: after q, and after θ where the hub is free.
+    pub(crate) fn head_index(&self) -> Option<usize> {
+        self.arm.head.as_ref()?;
+        Some(self.arm.elastic_dofs() + usize::from(self.drive.hub_is_free()))
+    }
+
+    /// The hub (θ, θ̇, θ̈ where prescribed, else 0) and the configuration at (t, x, v).
+    fn head_frame<'x>(&self, t: f64, x: &'x DVector<f64>, v: &'x DVector<f64>) -> (f64, HeadFrame<'x>) {
+        let n = self.arm.elastic_dofs();
+        let (hub, first) = match self.drive {
+            HubDrive::Prescribed(profile) => {
+                let (hub, _) = self.hub.at(profile, t);
+                ((hub.angle_rad, hub.rate_rad_s, hub.accel_rad_s2), 0)
+            }
+            _ => ((x[0], v[0], 0.0), 1),
+        };
+        let head = HeadState { angle_rad: x[first + n], rate_rad_s: v[first + n] };
+        let frame = HeadFrame {
+            hub: (hub.0, hub.1),
+            q: &x.as_slice()[first..first + n],
+            qd: &v.as_slice()[first..first + n],
+            head,
+        };
+        (hub.2, frame)
+    }
+
+    /// Adds the head's mass matrix over the integrator's coordinates to `m`.
+    pub(super) fn add_head_mass(&self, t: f64, x: &DVector<f64>, m: &mut DMatrix<f64>) {
+        let Some(head) = &self.arm.head else { return };
+        let n = self.arm.elastic_dofs();
+        let (_, at) = self.head_frame(t, x, x);
+        let (mut mass, mut force) = (DMatrix::zeros(n + 2, n + 2), DVector::zeros(n + 2));
+        head.terms(&at, self.arm.options.gravity_m_s2, HeadMass::Full(&mut mass), &mut force);
+        match self.drive {
+            HubDrive::Prescribed(_) => {
+                m.view_mut((0, 0), (n + 1, n + 1)).add_assign(&mass.view((1, 1), (n + 1, n + 1)))
+            }
+            _ => m.view_mut((0, 0), (n + 2, n + 2)).add_assign(&mass),
+        }
+    }
+
+    /// The head's forces over the integrator's coordinates, added to `f`; under a prescribed hub
+    /// its θ̈ moves to the right-hand side.
+    fn add_head_forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
+        let Some(head) = &self.arm.head else { return };
+        let n = self.arm.elastic_dofs();
+        let (theta_dd, at) = self.head_frame(t, x, v);
+        let prescribed = !self.drive.hub_is_free();
+        let (mut column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
+        let mass = if prescribed { HeadMass::HubColumn(&mut column) } else { HeadMass::None };
+        head.terms(&at, self.arm.options.gravity_m_s2, mass, &mut force);
+        if prescribed {
+            for j in 1..n + 2 {
+                f[j - 1] += force[j] - column[j] * theta_dd;
+            }
+        } else {
+            f.rows_mut(0, n + 2).add_assign(&force);
+        }
+    }
+
+    /// A prescribed hub's forces over [q, ψ] with the head.
+    pub(super) fn prescribed_forces_with_head(
+        &self,
+        t: f64,
+        hub: &DriveState,
+        trig: (f64, f64),
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        f: &mut DVector<f64>,
+    ) {
+        let n = self.arm.elastic_dofs();
+        let (q, qd) = (x.rows(0, n).into_owned(), v.rows(0, n).into_owned());
+        f.fill(0.0);
+        let elastic = &mut f.as_mut_slice()[..n];
+        elastic.copy_from_slice(self.arm.coupling.as_slice());
+        elastic.iter_mut().for_each(|fi| *fi *= -hub.accel_rad_s2);
+        self.add_elastic_forces(hub, trig, &q, &qd, elastic);
+        self.add_contact_forces(hub, &q, &qd, None, elastic);
+        self.add_head_forces(t, x, v, f);
+    }
+
+    /// A free hub's head forces (after the arm's and the actuator's).
+    pub(super) fn add_free_hub_head_forces(&self, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
+        self.add_head_forces(0.0, x, v, f);
+    }
+}
+
+impl ArmSystem<'_> {
+    /// A prescribed hub's column of the whole mass matrix over the integrator's coordinates
+    /// [q, ψ]: what a jump of θ̇ pushes on them.
+    pub(super) fn hub_column(&self, t: f64, x: &DVector<f64>) -> DVector<f64> {
+        let n = self.arm.elastic_dofs();
+        let q = x.rows(0, n).into_owned();
+        let mut column = DVector::zeros(x.len());
+        column.rows_mut(0, n).copy_from(&(&self.arm.coupling + &self.arm.gyroscopic * &q));
+        if let Some(head) = &self.arm.head {
+            let (_, at) = self.head_frame(t, x, x);
+            let (mut head_column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
+            head.terms(&at, 0.0, HeadMass::HubColumn(&mut head_column), &mut force);
+            column.rows_mut(0, n + 1).add_assign(&head_column.rows(1, n + 1));
+        }
+        column
+    }
+
+    /// The head's angle and rate in the integrator's (x, v).
+    pub(crate) fn head_state(&self, x: &DVector<f64>, v: &DVector<f64>) -> Option<HeadState> {
+        let i = self.head_index()?;
+        Some(HeadState { angle_rad: x[i], rate_rad_s: v[i] })
+    }
+
+    /// The head's share of the hub torque a prescribed drive applies (its θ row of M z̈ − f) and
+    /// of the energies [kinetic, strain (the hinge spring), gravity], J, at the state (t, x, v, a).
+    pub(super) fn head_torque_and_energies(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+    ) -> Option<(f64, [f64; 3])> {
+        let head = self.arm.head.as_ref()?;
+        let n = self.arm.elastic_dofs();
+        let (theta_dd, at) = self.head_frame(t, x, v);
+        let g = self.arm.options.gravity_m_s2;
+        let (mut column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
+        head.terms(&at, g, HeadMass::HubColumn(&mut column), &mut force);
+        let (mut z_rate, mut z_accel) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
+        let first = usize::from(self.drive.hub_is_free());
+        z_rate[0] = at.hub.1;
+        z_accel[0] = if first == 1 { a[0] } else { theta_dd };
+        z_rate.rows_mut(1, n + 1).copy_from(&v.rows(first, n + 1));
+        z_accel.rows_mut(1, n + 1).copy_from(&a.rows(first, n + 1));
+        let torque = column.dot(&z_accel) - force[0];
+        Some((torque, head.energies_j(&at, &z_rate, g)))
+    }
+}
+
+/// The arm at rest with its head, the hub held at `angle_rad`: (q, ψ) where every force on q
+/// and ψ balances, by Newton's method from the arm's static deflection and ψ = 0.
+pub(super) fn static_with_head(arm: &ArmModel, angle_rad: f64) -> Result<(DVector<f64>, HeadState), super::ArmError> {
+    let n = arm.elastic_dofs();
+    let (drive, load, hub) =
+        (HubDrive::Free { torque_n_m: 0.0 }, super::GeneralizedLoad::zero(n), super::HubCache::default());
+    let system = ArmSystem::new(arm, &drive, &load, &[], &hub);
+    let mut x = DVector::zeros(n + 2);
+    x[0] = angle_rad;
+    x.rows_mut(1, n).copy_from(&arm.static_deflection(angle_rad)?);
+    let v = DVector::zeros(n + 2);
+    let (mut f, mut k, mut c) = (DVector::zeros(n + 2), DMatrix::zeros(n + 2, n + 2), DMatrix::zeros(n + 2, n + 2));
+    for _ in 0..50 {
+        crate::integrate::Dynamics::forces(&system, 0.0, &x, &v, &mut f);
+        crate::integrate::finite_difference_tangents(&system, 0.0, &x, &v, &mut k, &mut c);
+        let step = k.view((1, 1), (n + 1, n + 1)).into_owned().lu().solve(&f.rows(1, n + 1).into_owned());
+        let Some(step) = step else { break };
+        x.rows_mut(1, n + 1).add_assign(&step);
+        if step.amax() <= 1e-13 * (1.0 + x.rows(1, n + 1).amax()) {
+            return Ok((x.rows(1, n).into_owned(), HeadState { angle_rad: x[n + 1], rate_rad_s: 0.0 }));
+        }
+    }
+    Err(super::ArmError::InvalidParameter {
+        name: "head".into(),
+        value: angle_rad,
+        allowed: "a hub angle at which the head's hinge spring finds a rest (Newton did not converge)".into(),
+    })
+}
+
+impl ArmSystem<'_> {
+    /// Tangents with a head: the arm's own over its coordinates, and the head's by central
+    /// differences of its forces alone (a few flops each), over every coordinate.
+    pub(super) fn tangents_with_head(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        k: &mut DMatrix<f64>,
+        c: &mut DMatrix<f64>,
+    ) {
+        let dofs = x.len();
+        let arm = dofs - 1;
+        let (mut k_arm, mut c_arm) = (DMatrix::zeros(arm, arm), DMatrix::zeros(arm, arm));
+        self.arm_tangents(t, &x.rows(0, arm).into_owned(), &v.rows(0, arm).into_owned(), &mut k_arm, &mut c_arm);
+        k.fill(0.0);
+        c.fill(0.0);
+        k.view_mut((0, 0), (arm, arm)).copy_from(&k_arm);
+        c.view_mut((0, 0), (arm, arm)).copy_from(&c_arm);
+        let (mut xp, mut vp) = (x.clone(), v.clone());
+        let (mut plus, mut minus) = (DVector::zeros(dofs), DVector::zeros(dofs));
+        for is_rate in [false, true] {
+            for j in 0..dofs {
+                let value = if is_rate { v[j] } else { x[j] };
+                let h = 1e-7 * value.abs().max(1e-3);
+                for (sign, out) in [(1.0, &mut plus), (-1.0, &mut minus)] {
+                    let target = if is_rate { &mut vp } else { &mut xp };
+                    target[j] = value + sign * h;
+                    out.fill(0.0);
+                    self.add_head_forces(t, &xp, &vp, out);
+                }
+                if is_rate {
+                    vp[j] = value
+                } else {
+                    xp[j] = value
+                }
+                let tangent = if is_rate { &mut *c } else { &mut *k };
+                for i in 0..dofs {
+                    tangent[(i, j)] -= (plus[i] - minus[i]) / (2.0 * h);
+                }
+            }
+        }
+    }
+}
+
+impl ArmSystem<'_> {
+    /// What the head puts on the arm beyond the point mass the beam carries at the hinge
+    /// station, at the state (t, x, v, a), as hub-frame point loads on the arm there: the head's
+    /// d'Alembert and gravity load m (g − a_c) at the hinge, less the point's m (g − a_p), and
+    /// the hinge spring's couple as two opposite forces 1 m apart.
+    pub(crate) fn head_loads_on_arm(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+    ) -> Vec<crate::point_load::PointLoad<crate::point_load::Hub>> {
+        use crate::point_load::PointLoad;
+        let Some(head) = &self.arm.head else { return Vec::new() };
+        let n = self.arm.elastic_dofs();
+        let (theta_dd, at) = self.head_frame(t, x, v);
+        let first = usize::from(self.drive.hub_is_free());
+        let mut z_accel = DVector::zeros(n + 2);
+        z_accel[0] = if first == 1 { a[0] } else { theta_dd };
+        z_accel.rows_mut(1, n + 1).copy_from(&a.rows(first, n + 1));
+        let g = self.arm.options.gravity_m_s2;
+        let gravity = [-g * at.hub.0.sin(), -g * at.hub.0.cos()];
+        let m = head.head.mass_kg;
+        let body = head.head_point(at.q, at.qd, at.head);
+        let point = head.axis_point(at.q, at.qd);
+        let load = |p: &BodyPoint, turns: bool, sign: f64| {
+            let accel = head.jacobian(p, n, turns) * &z_accel;
+            let rate = at.hub.1;
+            let a = [
+                accel[0] - 2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
+                accel[1] + 2.0 * rate * p.rate[0] - rate * rate * p.centre[1] - p.turn_rate.powi(2) * p.rho[1],
+            ];
+            [sign * m * (gravity[0] - a[0]), sign * m * (gravity[1] - a[1])]
+        };
+        let station = head.head.hinge_station_m;
+        let hinge = [body.centre[0] - body.rho[0], body.centre[1] - body.rho[1]];
+        let couple = head.head.stiffness_n_m_per_rad() * at.head.angle_rad
+            + head.head.damping_n_m_s_per_rad() * at.head.rate_rad_s;
+        let [px, py] = point.centre;
+        vec![
+            PointLoad::new(station, hinge, load(&body, true, 1.0)),
+            PointLoad::new(station, point.centre, load(&point, false, -1.0)),
+            PointLoad::new(station, [px + 0.5, py], [0.0, couple]),
+            PointLoad::new(station, [px - 0.5, py], [0.0, -couple]),
+        ]
+    }
+}
