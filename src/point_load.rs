@@ -21,13 +21,20 @@ pub struct PointLoad<F> {
     pub point_m: [f64; 2],
     /// Force, N.
     pub force_n: [f64; 2],
+    /// A couple with it, N·m (counter-clockwise positive; 0 for a contact's force).
+    pub couple_n_m: f64,
     frame: PhantomData<F>,
 }
 
 impl<F> PointLoad<F> {
     /// The force `force_n` at `point_m`, on the part at station `station_m`.
     pub fn new(station_m: f64, point_m: [f64; 2], force_n: [f64; 2]) -> Self {
-        PointLoad { station_m, point_m, force_n, frame: PhantomData }
+        PointLoad { station_m, point_m, force_n, couple_n_m: 0.0, frame: PhantomData }
+    }
+
+    /// The same force with a couple `couple_n_m`, N·m, counter-clockwise positive.
+    pub fn with_couple(self, couple_n_m: f64) -> Self {
+        PointLoad { couple_n_m, ..self }
     }
 
     /// The same force, read as acting on the part at station `station_m`.
@@ -40,7 +47,7 @@ impl PointLoad<World> {
     /// The load in the hub frame of a hub at the angle whose sine and cosine are `(s, c)`.
     pub fn in_hub(&self, (s, c): (f64, f64)) -> PointLoad<Hub> {
         let turn = |[x, y]: [f64; 2]| [c * x + s * y, -s * x + c * y];
-        PointLoad::new(self.station_m, turn(self.point_m), turn(self.force_n))
+        PointLoad::new(self.station_m, turn(self.point_m), turn(self.force_n)).with_couple(self.couple_n_m)
     }
 }
 
@@ -48,7 +55,7 @@ impl PointLoad<Hub> {
     /// The load in the world frame, the hub at the angle whose sine and cosine are `(s, c)`.
     pub fn in_world(&self, (s, c): (f64, f64)) -> PointLoad<World> {
         let turn = |[x, y]: [f64; 2]| [c * x - s * y, s * x + c * y];
-        PointLoad::new(self.station_m, turn(self.point_m), turn(self.force_n))
+        PointLoad::new(self.station_m, turn(self.point_m), turn(self.force_n)).with_couple(self.couple_n_m)
     }
 }
 

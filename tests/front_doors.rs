@@ -167,9 +167,9 @@ proptest! {
     }
 
     #[test]
-    fn a_mutated_urdf_loads_or_says_why(which in 0..4usize, mutations in prop::collection::vec(mutation(), 1..4)) {
+    fn a_mutated_urdf_loads_or_says_why(which in 0..5usize, mutations in prop::collection::vec(mutation(), 1..4)) {
         let dir = project("urdf");
-        let file = ["robots/pipe_arm.urdf", "robots/lab_arm1.urdf", "robots/spin_up_beam.urdf", "robots/pipe_arm_twin.urdf"][which];
+        let file = ["robots/pipe_arm.urdf", "robots/lab_arm1.urdf", "robots/spin_up_beam.urdf", "robots/pipe_arm_twin.urdf", "robots/pipe_arm_head.urdf"][which];
         let text = mutate(&shipped(file), &mutations);
         holds(&dir.join("robots").join(format!("mutated-{which}.urdf")), &text, load_robot).map_err(TestCaseError::fail)?;
     }

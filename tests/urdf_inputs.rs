@@ -30,7 +30,7 @@ fn robot_error(tag: &str, edit: impl Fn(String) -> String) -> String {
 
 #[test]
 fn the_shipped_robots_load() {
-    for name in ["pipe_arm", "pipe_arm_twin", "lab_arm1", "lab_arm2", "lab_arm3", "spin_up_beam"] {
+    for name in ["pipe_arm", "pipe_arm_twin", "pipe_arm_head", "lab_arm1", "lab_arm2", "lab_arm3", "spin_up_beam"] {
         let robot = load_robot(&manifest().join(format!("robots/{name}.urdf"))).unwrap();
         assert!(robot.arm.length_m() > 0.0);
     }

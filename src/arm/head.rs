@@ -18,6 +18,7 @@
 use std::ops::AddAssign;
 
 use nalgebra::{DMatrix, DVector};
+use smallvec::SmallVec;
 
 use super::products::dot;
 use super::{ArmModel, ArmSystem, HubDrive};
@@ -117,72 +118,76 @@ impl HeadModel {
         let m = self.head.mass_kg;
         let body = self.head_point(at.q, at.qd, at.head);
         let point = self.axis_point(at.q, at.qd);
-        let body_j = self.jacobian(&body, n, true);
-        let point_j = self.jacobian(&point, n, false);
-        force.fill(0.0);
-        let (theta, rate) = at.hub;
-        let gravity = [-g_m_s2 * theta.sin(), -g_m_s2 * theta.cos()];
-        for (sign, p, j) in [(1.0, &body, &body_j), (-1.0, &point, &point_j)] {
-            // a_vp = 2θ̇ k × ċ − θ̇² c − β̇² ρ: the acceleration at zero z̈.
+        let (body_j, point_j) = (self.jacobian(&body, n, true), self.jacobian(&point, n, false));
+        let (s, c) = at.hub.0.sin_cos();
+        let gravity = [-g_m_s2 * s, -g_m_s2 * c];
+        let rate = at.hub.1;
+        // m (g − a_vp), a_vp = 2θ̇ k × ċ − θ̇² c − β̇² ρ: the load at zero z̈.
+        let load = |p: &BodyPoint| {
             let accel = [
                 -2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
                 2.0 * rate * p.rate[0] - rate * rate * p.centre[1] - p.turn_rate.powi(2) * p.rho[1],
             ];
-            let load = [sign * m * (gravity[0] - accel[0]), sign * m * (gravity[1] - accel[1])];
-            force.gemv_tr(1.0, j, &DVector::from_column_slice(&load), 1.0);
+            [m * (gravity[0] - accel[0]), m * (gravity[1] - accel[1])]
+        };
+        let (body_load, point_load) = (load(&body), load(&point));
+        let dot = |a: [f64; 2], b: [f64; 2]| a[0] * b[0] + a[1] * b[1];
+        for (j, (bj, pj)) in body_j.iter().zip(&point_j).enumerate() {
+            force[j] = dot(*bj, body_load) - dot(*pj, point_load);
         }
         force[n + 1] -= self.head.stiffness_n_m_per_rad() * at.head.angle_rad
             + self.head.damping_n_m_s_per_rad() * at.head.rate_rad_s;
-        let mut spin = DVector::zeros(n + 2);
-        spin[0] = 1.0;
-        spin.rows_mut(1, n).copy_from(&self.hinge_rows[2]);
-        spin[n + 1] = 1.0;
+        let spin = |j: usize| if j == 0 || j == n + 1 { 1.0 } else { self.hinge_rows[2][j - 1] };
         let inertia = self.head.inertia_kg_m2;
+        let entry = |i: usize, j: usize| {
+            m * (dot(body_j[i], body_j[j]) - dot(point_j[i], point_j[j])) + inertia * spin(i) * spin(j)
+        };
         match mass {
             HeadMass::None => {}
-            HeadMass::HubColumn(column) => {
-                column.gemv_tr(m, &body_j, &body_j.column(0), 0.0);
-                column.gemv_tr(-m, &point_j, &point_j.column(0), 1.0);
-                column.axpy(inertia, &spin, 1.0);
-            }
+            HeadMass::HubColumn(column) => column.iter_mut().enumerate().for_each(|(i, c)| *c = entry(i, 0)),
             HeadMass::Full(mass) => {
-                mass.gemm_tr(m, &body_j, &body_j, 0.0);
-                mass.gemm_tr(-m, &point_j, &point_j, 1.0);
-                mass.ger(inertia, &spin, &spin, 1.0);
+                for j in 0..n + 2 {
+                    for i in 0..=j {
+                        let e = entry(i, j);
+                        mass[(i, j)] = e;
+                        mass[(j, i)] = e;
+                    }
+                }
             }
         }
     }
 
-    /// The 2 × (n + 2) velocity Jacobian of a point over z = [θ, q, ψ] in the hub frame.
-    fn jacobian(&self, p: &BodyPoint, n: usize, turns: bool) -> DMatrix<f64> {
-        let mut j = DMatrix::zeros(2, n + 2);
-        j[(0, 0)] = -p.centre[1];
-        j[(1, 0)] = p.centre[0];
+    /// The velocity Jacobian of a point over z = [θ, q, ψ] in the hub frame, column by column
+    /// (hub-frame x, y per coordinate).
+    fn jacobian(&self, p: &BodyPoint, n: usize, turns: bool) -> SmallVec<[[f64; 2]; 16]> {
         let [ru, rv] =
             if turns { [&self.hinge_rows[0], &self.hinge_rows[1]] } else { [&self.axis_rows[0], &self.axis_rows[1]] };
-        for i in 0..n {
-            let phi = if turns { self.hinge_rows[2][i] } else { 0.0 };
-            j[(0, 1 + i)] = ru[i] - p.rho[1] * phi;
-            j[(1, 1 + i)] = rv[i] + p.rho[0] * phi;
-        }
-        if turns {
-            j[(0, n + 1)] = -p.rho[1];
-            j[(1, n + 1)] = p.rho[0];
-        }
+        let phi = |i: usize| if turns { self.hinge_rows[2][i] } else { 0.0 };
+        let mut j = SmallVec::with_capacity(n + 2);
+        j.push([-p.centre[1], p.centre[0]]);
+        j.extend((0..n).map(|i| [ru[i] - p.rho[1] * phi(i), rv[i] + p.rho[0] * phi(i)]));
+        j.push(if turns { [-p.rho[1], p.rho[0]] } else { [0.0, 0.0] });
         j
+    }
+
+    /// A point's hub-frame velocity at the rates `z_rate` over z = [θ, q, ψ].
+    fn velocity(jacobian: &[[f64; 2]], z_rate: &DVector<f64>) -> [f64; 2] {
+        jacobian.iter().zip(z_rate.iter()).fold([0.0; 2], |v, (c, r)| [v[0] + c[0] * r, v[1] + c[1] * r])
     }
 
     /// Kinetic and potential energy the head adds to the arm's (the point at the hinge
     /// station aside), gravity `g_m_s2`, J: [kinetic, hinge spring, gravity].
     pub(crate) fn energies_j(&self, at: &HeadFrame, z_rate: &DVector<f64>, g_m_s2: f64) -> [f64; 3] {
         let n = at.q.len();
-        let mut mass = DMatrix::zeros(n + 2, n + 2);
-        let mut force = DVector::zeros(n + 2);
-        self.terms(at, g_m_s2, HeadMass::Full(&mut mass), &mut force);
-        let kinetic = 0.5 * z_rate.dot(&(&mass * z_rate));
-        let spring = 0.5 * self.head.stiffness_n_m_per_rad() * at.head.angle_rad.powi(2);
         let body = self.head_point(at.q, at.qd, at.head);
         let point = self.axis_point(at.q, at.qd);
+        let square = |v: [f64; 2]| v[0] * v[0] + v[1] * v[1];
+        let body_v = Self::velocity(&self.jacobian(&body, n, true), z_rate);
+        let point_v = Self::velocity(&self.jacobian(&point, n, false), z_rate);
+        let turn_rate = z_rate[0] + body.turn_rate;
+        let kinetic = 0.5 * self.head.mass_kg * (square(body_v) - square(point_v))
+            + 0.5 * self.head.inertia_kg_m2 * turn_rate * turn_rate;
+        let spring = 0.5 * self.head.stiffness_n_m_per_rad() * at.head.angle_rad.powi(2);
         let d = [body.centre[0] - point.centre[0], body.centre[1] - point.centre[1]];
         let (s, c) = at.hub.0.sin_cos();
         let gravity = self.head.mass_kg * g_m_s2 * (s * d[0] + c * d[1]);
@@ -461,7 +466,7 @@ impl ArmSystem<'_> {
         let body = head.head_point(at.q, at.qd, at.head);
         let point = head.axis_point(at.q, at.qd);
         let load = |p: &BodyPoint, turns: bool, sign: f64| {
-            let accel = head.jacobian(p, n, turns) * &z_accel;
+            let accel = HeadModel::velocity(&head.jacobian(p, n, turns), &z_accel);
             let rate = at.hub.1;
             let a = [
                 accel[0] - 2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
@@ -473,12 +478,12 @@ impl ArmSystem<'_> {
         let hinge = [body.centre[0] - body.rho[0], body.centre[1] - body.rho[1]];
         let couple = head.head.stiffness_n_m_per_rad() * at.head.angle_rad
             + head.head.damping_n_m_s_per_rad() * at.head.rate_rad_s;
-        let [px, py] = point.centre;
-        vec![
-            PointLoad::new(station, hinge, load(&body, true, 1.0)),
-            PointLoad::new(station, point.centre, load(&point, false, -1.0)),
-            PointLoad::new(station, [px + 0.5, py], [0.0, couple]),
-            PointLoad::new(station, [px - 0.5, py], [0.0, -couple]),
-        ]
+        // One load at the hinge: the head's, less the point's moved there from the axis (its
+        // moment about the hinge joins the spring's couple).
+        let (on_hinge, off_point) = (load(&body, true, 1.0), load(&point, false, -1.0));
+        let lever = [point.centre[0] - hinge[0], point.centre[1] - hinge[1]];
+        let moved = lever[0] * off_point[1] - lever[1] * off_point[0];
+        let force = [on_hinge[0] + off_point[0], on_hinge[1] + off_point[1]];
+        vec![PointLoad::new(station, hinge, force).with_couple(couple + moved)]
     }
 }

@@ -377,7 +377,7 @@ impl SectionRecovery {
             let lever = sub(load.point_m, [station.x_m() + u, v]);
             let (s, c) = phi.sin_cos();
             *axial += c * load.force_n[0] + s * load.force_n[1];
-            *moment -= cross(lever, load.force_n);
+            *moment -= cross(lever, load.force_n) + load.couple_n_m;
         }
     }
 }
