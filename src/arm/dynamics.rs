@@ -377,7 +377,7 @@ impl ArmSystem<'_> {
             Some(couplings) if !pins.is_empty() => {
                 for ((pin, rows), load) in pins.iter().zip(&couplings.rows).zip(&loads) {
                     f[0] += load * pin.lever_m;
-                    for (i, fi) in f[1..own].iter_mut().enumerate() {
+                    for (i, fi) in f[1..1 + self.arm.elastic_dofs()].iter_mut().enumerate() {
                         *fi += load * (pin.body_unit[0] * rows[0][i] + pin.body_unit[1] * rows[1][i]);
                     }
                 }
@@ -458,7 +458,8 @@ impl ArmSystem<'_> {
         let Some(plant) = self.drive.plant() else { return };
         let n = x.len();
         let own = self.own_start();
-        let read = if plant.arm_pins.is_some() { 0..n } else { 0..1 };
+        // A cylinder's pins read θ and q; a servo's torque θ alone; both their own coordinates.
+        let read = if plant.arm_pins.is_some() { 0..own } else { 0..1 };
         let columns: Vec<usize> = read.chain(own..n).collect();
         let (mut xp, mut vp) = (x.as_slice().to_vec(), v.as_slice().to_vec());
         let (mut plus, mut minus) = (vec![0.0; n], vec![0.0; n]);

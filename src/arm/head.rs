@@ -366,16 +366,22 @@ impl ArmSystem<'_> {
     }
 }
 
-/// The arm at rest with its head, the hub held at `angle_rad`: (q, ψ) where every force on q
-/// and ψ balances, by Newton's method from the arm's static deflection and ψ = 0.
-pub(super) fn static_with_head(arm: &ArmModel, angle_rad: f64) -> Result<(DVector<f64>, HeadState), super::ArmError> {
+/// The arm at rest with its head, the hub held at `angle_rad` and generalized forces `extra` on
+/// q besides gravity (a cylinder holding the arm): (q, ψ) where every force on q and ψ balances,
+/// by Newton's method from the arm's static deflection and ψ = 0, and the moment gravity then
+/// puts on the hub, N·m.
+pub(super) fn static_with_head(
+    arm: &ArmModel,
+    angle_rad: f64,
+    extra: &DVector<f64>,
+) -> Result<(DVector<f64>, HeadState, f64), super::ArmError> {
     let n = arm.elastic_dofs();
-    let (drive, load, hub) =
-        (HubDrive::Free { torque_n_m: 0.0 }, super::GeneralizedLoad::zero(n), super::HubCache::default());
+    let load = super::GeneralizedLoad { hub_torque_n_m: 0.0, modal: extra.clone() };
+    let (drive, hub) = (HubDrive::Free { torque_n_m: 0.0 }, super::HubCache::default());
     let system = ArmSystem::new(arm, &drive, &load, &[], &hub);
     let mut x = DVector::zeros(n + 2);
     x[0] = angle_rad;
-    x.rows_mut(1, n).copy_from(&arm.static_deflection(angle_rad)?);
+    x.rows_mut(1, n).copy_from(&arm.static_deflection_under(angle_rad, extra)?);
     let v = DVector::zeros(n + 2);
     let (mut f, mut k, mut c) = (DVector::zeros(n + 2), DMatrix::zeros(n + 2, n + 2), DMatrix::zeros(n + 2, n + 2));
     for _ in 0..50 {
@@ -385,7 +391,8 @@ pub(super) fn static_with_head(arm: &ArmModel, angle_rad: f64) -> Result<(DVecto
         let Some(step) = step else { break };
         x.rows_mut(1, n + 1).add_assign(&step);
         if step.amax() <= 1e-13 * (1.0 + x.rows(1, n + 1).amax()) {
-            return Ok((x.rows(1, n).into_owned(), HeadState { angle_rad: x[n + 1], rate_rad_s: 0.0 }));
+            crate::integrate::Dynamics::forces(&system, 0.0, &x, &v, &mut f);
+            return Ok((x.rows(1, n).into_owned(), HeadState { angle_rad: x[n + 1], rate_rad_s: 0.0 }, f[0]));
         }
     }
     Err(super::ArmError::InvalidParameter {

@@ -139,7 +139,7 @@ impl ArmSimulation {
         let mut drive = drive.clone();
         let mut error = 0.0;
         if let HubDrive::Actuated(plant) = &mut drive {
-            let own = 1 + self.arm.elastic_dofs();
+            let own = 1 + self.arm.elastic_dofs() + self.arm.head_dofs();
             if integral == 1 {
                 plant.controller.integral = y[positions + rates];
             }

@@ -88,17 +88,10 @@ impl ArmSimulation {
         let start_rad = match drive {
             HubDrive::Prescribed(ref p) => p.sample(0.0).angle_rad,
             HubDrive::Free { .. } => 0.0,
-            HubDrive::Actuated(_) if arm.head.is_some() => {
-                return Err(ArmError::InvalidParameter {
-                    name: "head".into(),
-                    value: f64::NAN,
-                    allowed: "a tilting head under a prescribed or free hub (not yet under an actuator)".into(),
-                });
-            }
             HubDrive::Actuated(plant) => return Self::held_by(arm, plant, integrator),
         };
         if arm.head.is_some() {
-            let (q0, head) = super::head::static_with_head(&arm, start_rad)?;
+            let (q0, head, _) = super::head::static_with_head(&arm, start_rad, &DVector::zeros(n))?;
             let free = usize::from(drive.hub_is_free());
             let x = DVector::from_iterator(
                 free + n + 1,
@@ -121,14 +114,17 @@ impl ArmSimulation {
             let pins: Vec<[f64; 2]> = h.cylinders.each.iter().map(|c| c.arm_pin_m).collect();
             plant.arm_pins = Some(arm.pin_couplings(&pins)?);
         }
-        let Hold { angle_rad: angle, q: q0, torque_n_m: load, levers_m } = static_hold(&arm, &plant)?;
+        let Hold { angle_rad: angle, q: q0, head, torque_n_m: load, levers_m } = static_hold(&arm, &plant)?;
         let (own_x, own_v) =
             plant.holding(angle, load, &levers_m).map_err(|why| ArmError::ActuatorCannotHold { load, why })?;
-        let n = arm.elastic_dofs();
-        let coordinates = std::iter::once(angle).chain(q0.iter().copied()).chain(own_x.iter().copied());
-        let x = DVector::from_iterator(1 + n + own_x.len(), coordinates);
+        let own = 1 + arm.elastic_dofs() + arm.head_dofs();
+        let coordinates = std::iter::once(angle)
+            .chain(q0.iter().copied())
+            .chain(head.map(|h| h.angle_rad))
+            .chain(own_x.iter().copied());
+        let x = DVector::from_iterator(own + own_x.len(), coordinates);
         let mut v = DVector::zeros(x.len());
-        v.rows_mut(1 + n, own_v.len()).copy_from(&own_v);
+        v.rows_mut(own, own_v.len()).copy_from(&own_v);
         Self::from_coordinates(arm, HubDrive::Actuated(plant), integrator, x, v)
     }
 
@@ -501,6 +497,8 @@ struct Hold {
     angle_rad: f64,
     /// The arm's deflection.
     q: DVector<f64>,
+    /// The tilting head's rest, if there is one.
+    head: Option<HeadState>,
     /// The actuator's torque on the hub, N·m.
     torque_n_m: f64,
     /// The cylinders' moment arms on the deflected arm, m (none for a servo).
@@ -516,10 +514,15 @@ fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<Hold, ArmError> 
     let g = arm.options.gravity_m_s2;
     let n = arm.elastic_dofs();
     let (mut angle, mut pin_load, mut torque, mut levers) = (reference_rad, DVector::zeros(n), 0.0, Vec::new());
-    let mut q0 = DVector::zeros(n);
+    let (mut q0, mut head) = (DVector::zeros(n), None);
     for _ in 0..12 {
-        q0 = arm.static_deflection_under(angle, &pin_load)?;
-        torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
+        if arm.head.is_some() {
+            let (q, rest, moment) = super::head::static_with_head(arm, angle, &pin_load)?;
+            (q0, head, torque) = (q, Some(rest), -moment);
+        } else {
+            q0 = arm.static_deflection_under(angle, &pin_load)?;
+            torque = -arm.gravity_moment_n_m(angle.sin_cos(), &q0, g);
+        }
         if let (Actuator::Hydraulic(h), Some(couplings)) = (&plant.actuator, &plant.arm_pins) {
             let zero = vec![0.0; n];
             let pins: Vec<ArmPin> = h
@@ -541,5 +544,5 @@ fn static_hold(arm: &ArmModel, plant: &ActuatorPlant) -> Result<Hold, ArmError> 
         }
         angle = reference_rad - plant.static_lag_rad(torque, &levers);
     }
-    Ok(Hold { angle_rad: angle, q: q0, torque_n_m: torque, levers_m: levers })
+    Ok(Hold { angle_rad: angle, q: q0, head, torque_n_m: torque, levers_m: levers })
 }
