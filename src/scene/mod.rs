@@ -192,16 +192,7 @@ impl Scene {
     /// Calls `f` with a view of the arm's current state.
     fn with_view<T>(&self, f: impl FnOnce(&ArmView) -> T) -> T {
         let (hub, q, qd) = self.arm.kinematics();
-        let view = ArmView {
-            arm: &self.arm.arm,
-            hub,
-            q: &q,
-            qd: &qd,
-            pieces: &self.pieces,
-            pivot_m: self.pivot_m,
-            head_rad: self.head_rad(),
-        };
-        f(&view)
+        f(&view_of(&self.arm, (hub, &q, &qd), &self.pieces, self.pivot_m))
     }
 
     /// Advances the scene by `h_s` seconds (the stages of the module doc).
@@ -212,15 +203,7 @@ impl Scene {
         contacts.clear();
         {
             let (hub, q, qd) = self.arm.kinematics();
-            let arm = ArmView {
-                arm: &self.arm.arm,
-                hub,
-                q: &q,
-                qd: &qd,
-                pieces: &self.pieces,
-                pivot_m: self.pivot_m,
-                head_rad: self.head_rad(),
-            };
+            let arm = view_of(&self.arm, (hub, &q, &qd), &self.pieces, self.pivot_m);
             for source in &mut self.sources {
                 source.pose(&arm);
             }
@@ -273,15 +256,7 @@ impl Scene {
     /// measures its forces on the arm's new state.
     fn advance_and_measure(&mut self, h_s: Option<f64>) {
         let (hub, q, qd) = self.arm.kinematics();
-        let arm = ArmView {
-            arm: &self.arm.arm,
-            hub,
-            q: &q,
-            qd: &qd,
-            pieces: &self.pieces,
-            pivot_m: self.pivot_m,
-            head_rad: self.head_rad(),
-        };
+        let arm = view_of(&self.arm, (hub, &q, &qd), &self.pieces, self.pivot_m);
         for (source, span) in self.sources.iter_mut().zip(&self.spans) {
             if let Some(h_s) = h_s {
                 source.advance(&arm, h_s);
@@ -416,6 +391,17 @@ impl Scene {
             string_centreline,
         }
     }
+}
+
+/// A view of `arm` at its kinematics (hub, q, q̇), carrying `pieces` about `pivot_m`.
+fn view_of<'a>(
+    arm: &'a ArmSimulation,
+    (hub, q, qd): (DriveState, &'a nalgebra::DVector<f64>, &'a nalgebra::DVector<f64>),
+    pieces: &'a [ArmPiece],
+    pivot_m: [f64; 3],
+) -> ArmView<'a> {
+    let head_rad = arm.head_state().map_or(0.0, |h| h.angle_rad);
+    ArmView { arm: &arm.arm, hub, q, qd, pieces, pivot_m, head_rad }
 }
 
 /// Where the `compliant` method finds the contacts of `pairs`, `auto` resolved: `pad-face` where
