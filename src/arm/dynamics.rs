@@ -555,7 +555,7 @@ impl Dynamics for ArmSystem<'_> {
                 f[0] = hub_force;
                 drop(scratch);
                 self.add_actuator_forces(x.as_slice(), v.as_slice(), f.as_mut_slice());
-                self.add_free_hub_head_forces(x, v, f);
+                self.add_head_forces(t, x, v, f);
             }
         }
     }

@@ -82,12 +82,6 @@ impl HeadModel {
         HeadModel { hinge_rows: [hinge_u, v.clone(), phi], axis_rows: [u, v], head: head.clone() }
     }
 
-    /// The head's centre of mass in the hub frame, and its offset from the hinge there, m.
-    pub fn centre_of_mass_hub_m(&self, q: &[f64], head: HeadState) -> ([f64; 2], [f64; 2]) {
-        let p = self.head_point(q, &vec![0.0; q.len()], head);
-        (p.centre, p.rho)
-    }
-
     fn head_point(&self, q: &[f64], qd: &[f64], head: HeadState) -> BodyPoint {
         let [ru, rv, rphi] = &self.hinge_rows;
         let h = &self.head;
@@ -273,7 +267,7 @@ impl ArmSystem<'_> {
 
     /// The head's forces over the integrator's coordinates, added to `f`; under a prescribed hub
     /// its θ̈ moves to the right-hand side.
-    fn add_head_forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
+    pub(super) fn add_head_forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
         let Some(head) = &self.arm.head else { return };
         let n = self.arm.elastic_dofs();
         let (theta_dd, at) = self.head_frame(t, x, v);
@@ -310,11 +304,6 @@ impl ArmSystem<'_> {
         self.add_contact_forces(hub, &q, &qd, None, elastic);
         self.add_head_forces(t, x, v, f);
     }
-
-    /// A free hub's head forces (after the arm's and the actuator's).
-    pub(super) fn add_free_hub_head_forces(&self, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
-        self.add_head_forces(0.0, x, v, f);
-    }
 }
 
 impl ArmSystem<'_> {
@@ -332,6 +321,19 @@ impl ArmSystem<'_> {
             column.rows_mut(0, n + 1).add_assign(&head_column.rows(1, n + 1));
         }
         column
+    }
+
+    /// [θ part, q, ψ] over z: `hub` (θ̇ or θ̈) and the q, ψ of the integrator's `values` (its
+    /// rates or accelerations).
+    fn over_z(&self, hub: f64, values: &DVector<f64>) -> DVector<f64> {
+        let n = self.arm.elastic_dofs();
+        let first = usize::from(self.drive.hub_is_free());
+        DVector::from_iterator(n + 2, std::iter::once(hub).chain(values.rows(first, n + 1).iter().copied()))
+    }
+
+    /// θ̈: the integrator's `a` under a free hub, the prescribed `profile_rad_s2` otherwise.
+    fn hub_accel(&self, profile_rad_s2: f64, a: &DVector<f64>) -> f64 {
+        if self.drive.hub_is_free() { a[0] } else { profile_rad_s2 }
     }
 
     /// The head's angle and rate in the integrator's (x, v).
@@ -355,12 +357,7 @@ impl ArmSystem<'_> {
         let g = self.arm.options.gravity_m_s2;
         let (mut column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
         head.terms(&at, g, HeadMass::HubColumn(&mut column), &mut force);
-        let (mut z_rate, mut z_accel) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
-        let first = usize::from(self.drive.hub_is_free());
-        z_rate[0] = at.hub.1;
-        z_accel[0] = if first == 1 { a[0] } else { theta_dd };
-        z_rate.rows_mut(1, n + 1).copy_from(&v.rows(first, n + 1));
-        z_accel.rows_mut(1, n + 1).copy_from(&a.rows(first, n + 1));
+        let (z_rate, z_accel) = (self.over_z(at.hub.1, v), self.over_z(self.hub_accel(theta_dd, a), a));
         let torque = column.dot(&z_accel) - force[0];
         Some((torque, head.energies_j(&at, &z_rate, g)))
     }
@@ -463,10 +460,7 @@ impl ArmSystem<'_> {
         let Some(head) = &self.arm.head else { return Vec::new() };
         let n = self.arm.elastic_dofs();
         let (theta_dd, at) = self.head_frame(t, x, v);
-        let first = usize::from(self.drive.hub_is_free());
-        let mut z_accel = DVector::zeros(n + 2);
-        z_accel[0] = if first == 1 { a[0] } else { theta_dd };
-        z_accel.rows_mut(1, n + 1).copy_from(&a.rows(first, n + 1));
+        let z_accel = self.over_z(self.hub_accel(theta_dd, a), a);
         let g = self.arm.options.gravity_m_s2;
         let gravity = [-g * at.hub.0.sin(), -g * at.hub.0.cos()];
         let m = head.head.mass_kg;
