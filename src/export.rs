@@ -159,6 +159,9 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
     if !s.head_angle_rad.is_empty() {
         push("head.angle[rad]".into(), &mut s.head_angle_rad.iter().copied());
     }
+    if !s.head_drive_torque_n_m.is_empty() {
+        push("head.drive_torque[N*m]".into(), &mut s.head_drive_torque_n_m.iter().copied());
+    }
     if !s.string_slip_m.is_empty() {
         push("string_slip[m]".into(), &mut s.string_slip_m.iter().copied());
         push("jaw_sinking[m]".into(), &mut s.jaw_sinking_m.iter().copied());

@@ -597,8 +597,13 @@ fn print_summary(path: &Path, s: &RunSummary) {
     println!("residual vibration  {:.3} mm, {frequency}, {decrement}, {settling}{read}", 1e3 * r.amplitude_m);
     if let Some(h) = &s.head {
         println!(
-            "head                {}: rest {:.3}°, range {:.3}° ..= {:.3}°, residual ±{:.3}° after the drive",
-            h.joint, h.rest_angle_deg, h.min_angle_deg, h.max_angle_deg, h.residual_swing_deg
+            "head                {}: rest {:.3}°, range {:.3}° ..= {:.3}°, residual ±{:.3}° after the drive{}",
+            h.joint,
+            h.rest_angle_deg,
+            h.min_angle_deg,
+            h.max_angle_deg,
+            h.residual_swing_deg,
+            h.peak_drive_torque_n_m.map_or(String::new(), |t| format!(", its drive's peak torque {t:.1} N·m"))
         );
     }
     if let Some(slip) = &s.string_slip {

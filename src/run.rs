@@ -60,6 +60,8 @@ pub struct Series {
     pub string_peak_stress: Vec<[f64; 2]>,
     /// The tilting head's angle on its hinge, rad (empty without one).
     pub head_angle_rad: Vec<f64>,
+    /// A driven head's drive torque on the head, N·m (empty unless driven).
+    pub head_drive_torque_n_m: Vec<f64>,
     /// Kinetic, strain and gravity energy, J.
     pub energies_j: Vec<[f64; 3]>,
     /// Elastic coordinates q (modal and rigid models only; empty for fe), `modal_dofs` per step

@@ -34,7 +34,7 @@ use crate::sensor::{SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
 pub use checks::ChecksSpec;
-pub use drive::{DriveSpec, PerMode, ShaperRequest};
+pub use drive::{DriveSpec, HeadSpec, PerMode, ShaperRequest};
 pub use strikes::{DampenerSpec, ShapeSpec, StructureSpec};
 
 /// A scenario file as written, and as a TOML document with its old spellings rewritten to the
@@ -136,6 +136,9 @@ pub struct ScenarioSpec {
     /// Sensors read at every step.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<SensorSpec>,
+    /// A driven tilting head's drive (`docs/model-head.md`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub head: Option<HeadSpec>,
     /// The sign-off's settings (`docs/sign-off.md`); its presence asks for utilisation. Left out
     /// of the canonical form when absent, so that a sweep's case hashes do not change for
     /// scenarios without it.
@@ -351,6 +354,7 @@ impl Scenario {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
         }
         let motion = check.drive(&spec.drive)?;
+        check.head(spec.head.as_ref(), &mut robot)?;
         let actuator = check.actuator(&spec.actuator, &robot)?;
         let payload = check.payload(&spec.payload, &robot)?;
         let dampeners: Result<Vec<_>, _> =

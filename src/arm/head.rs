@@ -196,6 +196,17 @@ impl ArmModel {
     pub fn with_head(mut self, head: Option<&TiltingHead>) -> Result<Self, super::ArmError> {
         let Some(head) = head else { return Ok(self) };
         let model = HeadModel::new(&self, head);
+        if head.is_driven() {
+            if head.profile().is_none() {
+                return Err(super::ArmError::InvalidParameter {
+                    name: "head.drive".into(),
+                    value: f64::NAN,
+                    allowed: format!("a drive for the driven hinge `{}` (the scenario's head.drive)", head.joint),
+                });
+            }
+            self.head = Some(model);
+            return Ok(self);
+        }
         let n = self.elastic_dofs();
         let zeros = vec![0.0; n];
         let at = HeadFrame { hub: (0.0, 0.0), q: &zeros, qd: &zeros, head: HeadState::default() };
@@ -212,9 +223,10 @@ impl ArmModel {
         Ok(self)
     }
 
-    /// Coordinates the head adds: 1 with a tilting head, else 0.
+    /// Coordinates the head adds: 1 with a tilting head on a spring, else 0 (a driven head's
+    /// angle is its profile's).
     pub fn head_dofs(&self) -> usize {
-        usize::from(self.head.is_some())
+        usize::from(self.head.as_ref().is_some_and(|h| !h.head.is_driven()))
     }
 }
 
@@ -226,8 +238,30 @@ impl ArmSystem<'_> {
 
     /// Index of ψ among the integrator's coordinates: after q, and after θ where the hub is free.
     pub(crate) fn head_index(&self) -> Option<usize> {
-        self.arm.head.as_ref()?;
-        Some(self.arm.elastic_dofs() + usize::from(self.drive.hub_is_free()))
+        (self.arm.head_dofs() == 1).then(|| self.arm.elastic_dofs() + usize::from(self.drive.hub_is_free()))
+    }
+
+    /// A driven head's angle, rate and acceleration at `t` (rad, rad/s, rad/s²).
+    fn driven_head(&self, t: f64) -> Option<DriveState> {
+        self.arm.head.as_ref()?.head.profile().map(|p| p.sample(t))
+    }
+
+    /// Where entry `j` of z = [θ, q, ψ] sits among the integrator's coordinates (`None`:
+    /// prescribed, a prescribed hub's θ or a driven head's ψ).
+    fn z_coordinate(&self, j: usize) -> Option<usize> {
+        let (n, first) = (self.arm.elastic_dofs(), usize::from(self.drive.hub_is_free()));
+        match j {
+            0 => (first == 1).then_some(0),
+            j if j <= n => Some(first + j - 1),
+            _ => self.head_index(),
+        }
+    }
+
+    /// The accelerations of z's prescribed entries (θ̈ of a prescribed hub, ψ̈ of a driven head)
+    /// at `t`, 0 for the others.
+    fn prescribed_accels(&self, t: f64, theta_dd: f64) -> [f64; 2] {
+        let hub = if self.drive.hub_is_free() { 0.0 } else { theta_dd };
+        [hub, self.driven_head(t).map_or(0.0, |h| h.accel_rad_s2)]
     }
 
     /// The hub (θ, θ̇, θ̈ where prescribed, else 0) and the configuration at (t, x, v).
@@ -240,7 +274,10 @@ impl ArmSystem<'_> {
             }
             _ => ((x[0], v[0], 0.0), 1),
         };
-        let head = HeadState { angle_rad: x[first + n], rate_rad_s: v[first + n] };
+        let head = match self.driven_head(t) {
+            Some(h) => HeadState { angle_rad: h.angle_rad, rate_rad_s: h.rate_rad_s },
+            None => HeadState { angle_rad: x[first + n], rate_rad_s: v[first + n] },
+        };
         let frame = HeadFrame {
             hub: (hub.0, hub.1),
             q: &x.as_slice()[first..first + n],
@@ -257,30 +294,42 @@ impl ArmSystem<'_> {
         let (_, at) = self.head_frame(t, x, x);
         let (mut mass, mut force) = (DMatrix::zeros(n + 2, n + 2), DVector::zeros(n + 2));
         head.terms(&at, self.arm.options.gravity_m_s2, HeadMass::Full(&mut mass), &mut force);
-        match self.drive {
-            HubDrive::Prescribed(_) => {
-                m.view_mut((0, 0), (n + 1, n + 1)).add_assign(&mass.view((1, 1), (n + 1, n + 1)))
+        for j in 0..n + 2 {
+            let Some(cj) = self.z_coordinate(j) else { continue };
+            for i in 0..n + 2 {
+                if let Some(ci) = self.z_coordinate(i) {
+                    m[(ci, cj)] += mass[(i, j)];
+                }
             }
-            _ => m.view_mut((0, 0), (n + 2, n + 2)).add_assign(&mass),
         }
     }
 
-    /// The head's forces over the integrator's coordinates, added to `f`; under a prescribed hub
-    /// its θ̈ moves to the right-hand side.
+    /// The head's forces over the integrator's coordinates, added to `f`; the prescribed
+    /// entries' accelerations (a prescribed hub's θ̈, a driven head's ψ̈) move to the right-hand
+    /// side.
     pub(super) fn add_head_forces(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>, f: &mut DVector<f64>) {
         let Some(head) = &self.arm.head else { return };
         let n = self.arm.elastic_dofs();
         let (theta_dd, at) = self.head_frame(t, x, v);
-        let prescribed = !self.drive.hub_is_free();
+        let [hub_dd, head_dd] = self.prescribed_accels(t, theta_dd);
+        // The whole mass matrix only for a driven head's ψ̈ (its column); θ̈'s column alone else.
+        let driven = head_dd != 0.0;
+        let mut mass = if driven { DMatrix::zeros(n + 2, n + 2) } else { DMatrix::zeros(0, 0) };
         let (mut column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
-        let mass = if prescribed { HeadMass::HubColumn(&mut column) } else { HeadMass::None };
-        head.terms(&at, self.arm.options.gravity_m_s2, mass, &mut force);
-        if prescribed {
-            for j in 1..n + 2 {
-                f[j - 1] += force[j] - column[j] * theta_dd;
+        let asked = match (driven, hub_dd != 0.0) {
+            (true, _) => HeadMass::Full(&mut mass),
+            (false, true) => HeadMass::HubColumn(&mut column),
+            (false, false) => HeadMass::None,
+        };
+        head.terms(&at, self.arm.options.gravity_m_s2, asked, &mut force);
+        if driven {
+            column.copy_from(&mass.column(0));
+        }
+        for j in 0..n + 2 {
+            if let Some(cj) = self.z_coordinate(j) {
+                let head_inertia = if driven { mass[(j, n + 1)] * head_dd } else { 0.0 };
+                f[cj] += force[j] - column[j] * hub_dd - head_inertia;
             }
-        } else {
-            f.rows_mut(0, n + 2).add_assign(&force);
         }
     }
 
@@ -318,17 +367,23 @@ impl ArmSystem<'_> {
             let (_, at) = self.head_frame(t, x, x);
             let (mut head_column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
             head.terms(&at, 0.0, HeadMass::HubColumn(&mut head_column), &mut force);
-            column.rows_mut(0, n + 1).add_assign(&head_column.rows(1, n + 1));
+            for j in 1..n + 2 {
+                if let Some(cj) = self.z_coordinate(j) {
+                    column[cj] += head_column[j];
+                }
+            }
         }
         column
     }
 
-    /// [θ part, q, ψ] over z: `hub` (θ̇ or θ̈) and the q, ψ of the integrator's `values` (its
-    /// rates or accelerations).
-    fn over_z(&self, hub: f64, values: &DVector<f64>) -> DVector<f64> {
+    /// [θ part, q, ψ] over z: `hub` (θ̇ or θ̈), the q of the integrator's `values` (its rates or
+    /// accelerations) and their ψ entry, or `head` (ψ̇ or ψ̈) for a driven head.
+    fn over_z(&self, hub: f64, values: &DVector<f64>, head: f64) -> DVector<f64> {
         let n = self.arm.elastic_dofs();
         let first = usize::from(self.drive.hub_is_free());
-        DVector::from_iterator(n + 2, std::iter::once(hub).chain(values.rows(first, n + 1).iter().copied()))
+        let psi = self.head_index().map_or(head, |i| values[i]);
+        let q = values.rows(first, n);
+        DVector::from_iterator(n + 2, std::iter::once(hub).chain(q.iter().copied()).chain([psi]))
     }
 
     /// θ̈: the integrator's `a` under a free hub, the prescribed `profile_rad_s2` otherwise.
@@ -337,9 +392,9 @@ impl ArmSystem<'_> {
     }
 
     /// The head's angle and rate in the integrator's (x, v).
-    pub(crate) fn head_state(&self, x: &DVector<f64>, v: &DVector<f64>) -> Option<HeadState> {
-        let i = self.head_index()?;
-        Some(HeadState { angle_rad: x[i], rate_rad_s: v[i] })
+    pub(crate) fn head_state(&self, t: f64, x: &DVector<f64>, v: &DVector<f64>) -> Option<HeadState> {
+        self.arm.head.as_ref()?;
+        Some(self.head_frame(t, x, v).1.head)
     }
 
     /// The head's share of the hub torque a prescribed drive applies (its θ row of M z̈ − f) and
@@ -357,9 +412,40 @@ impl ArmSystem<'_> {
         let g = self.arm.options.gravity_m_s2;
         let (mut column, mut force) = (DVector::zeros(n + 2), DVector::zeros(n + 2));
         head.terms(&at, g, HeadMass::HubColumn(&mut column), &mut force);
-        let (z_rate, z_accel) = (self.over_z(at.hub.1, v), self.over_z(self.hub_accel(theta_dd, a), a));
+        let (z_rate, z_accel) = self.z_rates(t, theta_dd, v, a, at.hub.1);
         let torque = column.dot(&z_accel) - force[0];
         Some((torque, head.energies_j(&at, &z_rate, g)))
+    }
+
+    /// ż and z̈ at the state (t, v, a), the hub's rate `theta_d` and prescribed θ̈ `theta_dd`.
+    fn z_rates(
+        &self,
+        t: f64,
+        theta_dd: f64,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+        theta_d: f64,
+    ) -> (DVector<f64>, DVector<f64>) {
+        let driven = self.driven_head(t).unwrap_or_default();
+        (self.over_z(theta_d, v, driven.rate_rad_s), self.over_z(self.hub_accel(theta_dd, a), a, driven.accel_rad_s2))
+    }
+
+    /// The torque a driven head's drive puts on the head at the state (t, x, v, a), N·m: its ψ
+    /// row of M z̈ − f.
+    pub(crate) fn head_drive_torque(
+        &self,
+        t: f64,
+        x: &DVector<f64>,
+        v: &DVector<f64>,
+        a: &DVector<f64>,
+    ) -> Option<f64> {
+        let head = self.arm.head.as_ref().filter(|h| h.head.is_driven())?;
+        let n = self.arm.elastic_dofs();
+        let (theta_dd, at) = self.head_frame(t, x, v);
+        let (mut mass, mut force) = (DMatrix::zeros(n + 2, n + 2), DVector::zeros(n + 2));
+        head.terms(&at, self.arm.options.gravity_m_s2, HeadMass::Full(&mut mass), &mut force);
+        let (_, z_accel) = self.z_rates(t, theta_dd, v, a, at.hub.1);
+        Some(mass.row(n + 1).transpose().dot(&z_accel) - force[n + 1])
     }
 }
 
@@ -376,20 +462,33 @@ pub(super) fn static_with_head(
     let load = super::GeneralizedLoad { hub_torque_n_m: 0.0, modal: extra.clone() };
     let (drive, hub) = (HubDrive::Free { torque_n_m: 0.0 }, super::HubCache::default());
     let system = ArmSystem::new(arm, &drive, &load, &[], &hub);
-    let mut x = DVector::zeros(n + 2);
+    // The unknowns: q, and ψ on a spring (a driven head rests where its profile starts).
+    let unknowns = n + arm.head_dofs();
+    let mut x = DVector::zeros(1 + unknowns);
     x[0] = angle_rad;
     x.rows_mut(1, n).copy_from(&arm.static_deflection_under(angle_rad, extra)?);
-    let v = DVector::zeros(n + 2);
-    let (mut f, mut k, mut c) = (DVector::zeros(n + 2), DMatrix::zeros(n + 2, n + 2), DMatrix::zeros(n + 2, n + 2));
+    let v = DVector::zeros(1 + unknowns);
+    let (mut f, mut k, mut c) = (
+        DVector::zeros(1 + unknowns),
+        DMatrix::zeros(1 + unknowns, 1 + unknowns),
+        DMatrix::zeros(1 + unknowns, 1 + unknowns),
+    );
+    let rest = |x: &DVector<f64>, f: &mut DVector<f64>| {
+        crate::integrate::Dynamics::forces(&system, 0.0, x, &v, f);
+        let head = system.head_state(0.0, x, &v).unwrap_or_default();
+        (x.rows(1, n).into_owned(), HeadState { rate_rad_s: 0.0, ..head }, f[0])
+    };
+    if unknowns == 0 {
+        return Ok(rest(&x, &mut f));
+    }
     for _ in 0..50 {
         crate::integrate::Dynamics::forces(&system, 0.0, &x, &v, &mut f);
         crate::integrate::finite_difference_tangents(&system, 0.0, &x, &v, &mut k, &mut c);
-        let step = k.view((1, 1), (n + 1, n + 1)).into_owned().lu().solve(&f.rows(1, n + 1).into_owned());
+        let step = k.view((1, 1), (unknowns, unknowns)).into_owned().lu().solve(&f.rows(1, unknowns).into_owned());
         let Some(step) = step else { break };
-        x.rows_mut(1, n + 1).add_assign(&step);
-        if step.amax() <= 1e-13 * (1.0 + x.rows(1, n + 1).amax()) {
-            crate::integrate::Dynamics::forces(&system, 0.0, &x, &v, &mut f);
-            return Ok((x.rows(1, n).into_owned(), HeadState { angle_rad: x[n + 1], rate_rad_s: 0.0 }, f[0]));
+        x.rows_mut(1, unknowns).add_assign(&step);
+        if step.amax() <= 1e-13 * (1.0 + x.rows(1, unknowns).amax()) {
+            return Ok(rest(&x, &mut f));
         }
     }
     Err(super::ArmError::InvalidParameter {
@@ -411,13 +510,18 @@ impl ArmSystem<'_> {
         c: &mut DMatrix<f64>,
     ) {
         let dofs = x.len();
-        let arm = dofs - 1;
-        let (mut k_arm, mut c_arm) = (DMatrix::zeros(arm, arm), DMatrix::zeros(arm, arm));
-        self.arm_tangents(t, &x.rows(0, arm).into_owned(), &v.rows(0, arm).into_owned(), &mut k_arm, &mut c_arm);
-        k.fill(0.0);
-        c.fill(0.0);
-        k.view_mut((0, 0), (arm, arm)).copy_from(&k_arm);
-        c.view_mut((0, 0), (arm, arm)).copy_from(&c_arm);
+        if self.drive.hub_is_free() {
+            // The free hub's tangents fill their blocks of the whole matrices; ψ's stay 0.
+            self.arm_tangents(t, x, v, k, c);
+        } else {
+            let n = self.arm.elastic_dofs();
+            let (mut k_arm, mut c_arm) = (DMatrix::zeros(n, n), DMatrix::zeros(n, n));
+            self.arm_tangents(t, &x.rows(0, n).into_owned(), &v.rows(0, n).into_owned(), &mut k_arm, &mut c_arm);
+            k.fill(0.0);
+            c.fill(0.0);
+            k.view_mut((0, 0), (n, n)).copy_from(&k_arm);
+            c.view_mut((0, 0), (n, n)).copy_from(&c_arm);
+        }
         let (mut xp, mut vp) = (x.clone(), v.clone());
         let (mut plus, mut minus) = (DVector::zeros(dofs), DVector::zeros(dofs));
         for is_rate in [false, true] {
@@ -447,8 +551,8 @@ impl ArmSystem<'_> {
 impl ArmSystem<'_> {
     /// What the head puts on the arm beyond the point mass the beam carries at the hinge
     /// station, at the state (t, x, v, a), as hub-frame point loads on the arm there: the head's
-    /// d'Alembert and gravity load m (g − a_c) at the hinge, less the point's m (g − a_p), and
-    /// the hinge spring's couple as two opposite forces 1 m apart.
+    /// d'Alembert and gravity load m (g − a_c) at the hinge, less the point's m (g − a_p), with
+    /// the hinge's couple (the mount's torque, or the wrist drive's reaction).
     pub(crate) fn head_loads_on_arm(
         &self,
         t: f64,
@@ -460,7 +564,7 @@ impl ArmSystem<'_> {
         let Some(head) = &self.arm.head else { return Vec::new() };
         let n = self.arm.elastic_dofs();
         let (theta_dd, at) = self.head_frame(t, x, v);
-        let z_accel = self.over_z(self.hub_accel(theta_dd, a), a);
+        let (_, z_accel) = self.z_rates(t, theta_dd, v, a, at.hub.1);
         let g = self.arm.options.gravity_m_s2;
         let gravity = [-g * at.hub.0.sin(), -g * at.hub.0.cos()];
         let m = head.head.mass_kg;
@@ -477,8 +581,14 @@ impl ArmSystem<'_> {
         };
         let station = head.head.hinge_station_m;
         let hinge = [body.centre[0] - body.rho[0], body.centre[1] - body.rho[1]];
-        let couple = head.head.stiffness_n_m_per_rad() * at.head.angle_rad
-            + head.head.damping_n_m_s_per_rad() * at.head.rate_rad_s;
+        // The mount's torque on the arm, or the wrist drive's reaction.
+        let couple = match self.head_drive_torque(t, x, v, a) {
+            Some(drive_n_m) => -drive_n_m,
+            None => {
+                head.head.stiffness_n_m_per_rad() * at.head.angle_rad
+                    + head.head.damping_n_m_s_per_rad() * at.head.rate_rad_s
+            }
+        };
         // One load at the hinge: the head's, less the point's moved there from the axis (its
         // moment about the hinge joins the spring's couple).
         let (on_hinge, off_point) = (load(&body, true, 1.0), load(&point, false, -1.0));

@@ -93,9 +93,10 @@ impl ArmSimulation {
         if arm.head.is_some() {
             let (q0, head, _) = super::head::static_with_head(&arm, start_rad, &DVector::zeros(n))?;
             let free = usize::from(drive.hub_is_free());
+            let coordinate = arm.head_dofs() == 1;
             let x = DVector::from_iterator(
-                free + n + 1,
-                std::iter::repeat_n(0.0, free).chain(q0.iter().copied()).chain([head.angle_rad]),
+                free + n + arm.head_dofs(),
+                std::iter::repeat_n(0.0, free).chain(q0.iter().copied()).chain(coordinate.then_some(head.angle_rad)),
             );
             let v = DVector::zeros(x.len());
             return Self::from_coordinates(arm, drive, integrator, x, v);
@@ -120,7 +121,7 @@ impl ArmSimulation {
         let own = 1 + arm.elastic_dofs() + arm.head_dofs();
         let coordinates = std::iter::once(angle)
             .chain(q0.iter().copied())
-            .chain(head.map(|h| h.angle_rad))
+            .chain(head.filter(|_| arm.head_dofs() == 1).map(|h| h.angle_rad))
             .chain(own_x.iter().copied());
         let x = DVector::from_iterator(own + own_x.len(), coordinates);
         let mut v = DVector::zeros(x.len());
@@ -147,7 +148,7 @@ impl ArmSimulation {
         }
         // A tilting head starts at its rest pose, at rest on the arm.
         let head = |z: DVector<f64>| z.push(0.0);
-        let (q0, qd0) = if arm.head.is_some() { (head(q0), head(qd0)) } else { (q0, qd0) };
+        let (q0, qd0) = if arm.head_dofs() == 1 { (head(q0), head(qd0)) } else { (q0, qd0) };
         let (x, v) = match &drive {
             HubDrive::Prescribed(_) => (q0, qd0),
             HubDrive::Free { .. } => (prepend(0.0, &q0), prepend(0.0, &qd0)),
@@ -432,7 +433,14 @@ impl ArmSimulation {
     /// The tilting head's angle relative to the arm's section, and its rate, if there is one.
     pub fn head_state(&self) -> Option<HeadState> {
         let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
-        system.head_state(&self.state.x, &self.state.v)
+        system.head_state(self.state.t, &self.state.x, &self.state.v)
+    }
+
+    /// The torque a driven head's drive puts on the head now, N·m (`None` unless driven).
+    pub fn head_drive_torque_n_m(&self) -> Option<f64> {
+        let system = ArmSystem::new(&self.arm, &self.drive, &self.load, &self.contacts, &self.hub);
+        let s = &self.state;
+        system.head_drive_torque(s.t, &s.x, &s.v, &s.a)
     }
 
     /// What a tilting head puts on the arm beyond the mass the beam carries at its hinge

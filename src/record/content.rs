@@ -123,6 +123,9 @@ impl Writer<'_> {
         if !s.head_angle_rad.is_empty() {
             self.send("plots/head/angle_deg", s.head_angle_rad.iter().map(|a| a.to_degrees()))?;
         }
+        if !s.head_drive_torque_n_m.is_empty() {
+            self.send("plots/head/drive_torque", s.head_drive_torque_n_m.iter().copied())?;
+        }
         if !s.string_tip_deflection_m.is_empty() {
             self.send("plots/string/tip_deflection", s.string_tip_deflection_m.iter().copied())?;
             self.send("plots/string/bending_stress", s.string_stress_pa.iter().copied())?;

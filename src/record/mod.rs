@@ -20,6 +20,7 @@
 //! | `plots/energy/{kinetic,strain,gravity}` | J |
 //! | `plots/string_slip` | friction clamp slip, m |
 //! | `plots/head/angle_deg` | a tilting head's angle on its hinge, deg |
+//! | `plots/head/drive_torque` | a driven head's drive torque on the head, N·m |
 //! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
 //! | `plots/stress/worst_station` | σ at the worst station and fibre, Pa |
 //! | `plots/stress/yield/{tension,compression}` | ± yield / stress_factor there, Pa (where a yield strength is given and the peak reaches half of it; else the trace's name gives it) |

@@ -3,10 +3,13 @@
 //!
 //! A `locked` hinge is read as a fixed joint: its links are carried bodies like any other. A
 //! `spring` hinge makes the links below it one rigid body turning on the arm's section at the
-//! hinge station, its angle ψ one more coordinate of the arm ([`crate::arm::HeadModel`]).
+//! hinge station, its angle ψ one more coordinate of the arm ([`crate::arm::HeadModel`]); a
+//! `driven` hinge turns that body through a profile of its own (the scenario's `head.drive`).
+
+use crate::drive::MotionProfile;
 
 /// How the hinge of a tilting head behaves.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum HingeLaw {
     /// A torsion spring-damper between the head and the arm's section, relaxed at the URDF pose.
     Spring {
@@ -15,6 +18,9 @@ pub enum HingeLaw {
         /// Torsional damping, N·m·s/rad (>= 0).
         damping_n_m_s_per_rad: f64,
     },
+    /// Turned by a drive of its own: the angle on the hinge follows `profile` exactly (rad, 0 at
+    /// the URDF pose), the scenario's `head.drive` (`None` until a scenario gives it).
+    Driven { profile: Option<MotionProfile> },
 }
 
 /// The rigid head on its hinge, in the arm frame (x along the arm, y across it in the lift
@@ -40,16 +46,33 @@ pub struct TiltingHead {
 }
 
 impl TiltingHead {
-    /// The hinge's torsional stiffness, N·m/rad.
+    /// The hinge's torsional stiffness, N·m/rad (0 for a driven hinge).
     pub fn stiffness_n_m_per_rad(&self) -> f64 {
-        let HingeLaw::Spring { stiffness_n_m_per_rad, .. } = self.law;
-        stiffness_n_m_per_rad
+        match self.law {
+            HingeLaw::Spring { stiffness_n_m_per_rad, .. } => stiffness_n_m_per_rad,
+            HingeLaw::Driven { .. } => 0.0,
+        }
     }
 
-    /// The hinge's torsional damping, N·m·s/rad.
+    /// The hinge's torsional damping, N·m·s/rad (0 for a driven hinge).
     pub fn damping_n_m_s_per_rad(&self) -> f64 {
-        let HingeLaw::Spring { damping_n_m_s_per_rad, .. } = self.law;
-        damping_n_m_s_per_rad
+        match self.law {
+            HingeLaw::Spring { damping_n_m_s_per_rad, .. } => damping_n_m_s_per_rad,
+            HingeLaw::Driven { .. } => 0.0,
+        }
+    }
+
+    /// A driven hinge's profile (`Some` once a scenario gave it).
+    pub fn profile(&self) -> Option<&MotionProfile> {
+        match &self.law {
+            HingeLaw::Driven { profile } => profile.as_ref(),
+            HingeLaw::Spring { .. } => None,
+        }
+    }
+
+    /// Whether the hinge is driven (its angle prescribed, not a coordinate).
+    pub fn is_driven(&self) -> bool {
+        matches!(self.law, HingeLaw::Driven { .. })
     }
 
     /// Inertia about the hinge axis, kg·m².

@@ -47,6 +47,9 @@ pub(super) fn read_head(scene: &Scene, series: &mut Series) {
     if let Some(head) = scene.arm.head_state() {
         series.head_angle_rad.push(head.angle_rad);
     }
+    if let Some(torque) = scene.arm.head_drive_torque_n_m() {
+        series.head_drive_torque_n_m.push(torque);
+    }
 }
 
 /// How the tilting head swung on its hinge: angles relative to the arm's section at the hinge,
@@ -63,6 +66,9 @@ pub struct HeadSummary {
     pub max_angle_deg: f64,
     /// Half the peak-to-peak swing after the drive ends, deg.
     pub residual_swing_deg: f64,
+    /// A driven head's largest |drive torque| on the head, N·m (absent unless driven).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub peak_drive_torque_n_m: Option<f64>,
 }
 
 impl HeadSummary {
@@ -87,6 +93,9 @@ impl HeadSummary {
             } else {
                 0.0
             },
+            peak_drive_torque_n_m: head
+                .is_driven()
+                .then(|| series.head_drive_torque_n_m.iter().fold(0.0_f64, |p, t| p.max(t.abs()))),
         })
     }
 }

@@ -417,6 +417,56 @@ fn either(allowed: &str) -> DriveError {
 }
 
 /// Drive errors name radians; the file states degrees, so the key is given in the file's terms.
+/// The `[head]` table: a driven tilting head's own drive (`head.drive`, any drive kind but
+/// unshaped), in degrees on its hinge from the URDF pose.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct HeadSpec {
+    /// The head's drive.
+    pub drive: DriveSpec,
+}
+
+impl Check<'_> {
+    /// Sets a driven hinge's profile from `head.drive`; a driven hinge without one, or a `[head]`
+    /// for a robot without a driven hinge, is refused.
+    pub(super) fn head(&self, spec: Option<&HeadSpec>, robot: &mut crate::robot::Robot) -> Result<(), ScenarioError> {
+        match (robot.head.as_mut(), spec) {
+            (Some(head), Some(spec)) if head.is_driven() => {
+                if spec.drive.shaping().is_some() {
+                    return Err(
+                        self.invalid("head.drive.shaper", "an input shaper shapes the hub's drive: allowed unshaped")
+                    );
+                }
+                let profile = self.drive(&spec.drive).map_err(|e| match e {
+                    ScenarioError::Invalid { path, key, message } => {
+                        ScenarioError::Invalid { path, key: format!("head.{key}"), message }
+                    }
+                    other => other,
+                })?;
+                head.law = crate::robot::HingeLaw::Driven { profile: Some(profile) };
+                Ok(())
+            }
+            (Some(head), None) if head.is_driven() => Err(self.invalid(
+                "head.drive",
+                format!("missing: joint `{}` is a driven hinge (kind=\"driven\"): give the head's drive", head.joint),
+            )),
+            (Some(head), Some(_)) => Err(self.invalid(
+                "head",
+                format!(
+                    "joint `{}` is a spring hinge: a head drive is for a driven hinge (kind=\"driven\")",
+                    head.joint
+                ),
+            )),
+            (None, Some(_)) => Err(self.invalid(
+                "head",
+                "the robot has no tilting head: allowed with a revolute joint on the arm whose <pipearm:hinge> is \
+                 kind=\"driven\"",
+            )),
+            (_, None) => Ok(()),
+        }
+    }
+}
+
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
     let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = &e;
     let key = name.replace("_rad", "_deg");

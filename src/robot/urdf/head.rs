@@ -10,8 +10,9 @@ pub(super) enum Hinge {
 }
 
 impl Context<'_> {
-    /// The `<pipearm:hinge>` inside joint `joint`: `kind="locked"`, or `kind="spring"` with
-    /// `stiffness_n_m_per_rad` (> 0) and `damping_n_m_s_per_rad` (>= 0, default 0).
+    /// The `<pipearm:hinge>` inside joint `joint`: `kind="locked"`, `kind="spring"` with
+    /// `stiffness_n_m_per_rad` (> 0) and `damping_n_m_s_per_rad` (>= 0, default 0), or
+    /// `kind="driven"` (its profile from the scenario's `head.drive`).
     pub(super) fn hinge(&self, doc: &roxmltree::Document<'_>, joint: &str) -> Result<Hinge, RobotError> {
         let key = format!("joint[{joint}].pipearm:hinge");
         let node = doc
@@ -46,9 +47,16 @@ impl Context<'_> {
                 }
                 Ok(Hinge::Free(HingeLaw::Spring { stiffness_n_m_per_rad, damping_n_m_s_per_rad }))
             }
+            Some("driven") => {
+                self.only_attributes(&node, &key, &["kind"])?;
+                Ok(Hinge::Free(HingeLaw::Driven { profile: None }))
+            }
             other => Err(self.invalid(
                 format!("{key}@kind"),
-                format!("{}: allowed \"locked\" or \"spring\"", other.map_or("missing".into(), |k| format!("`{k}`"))),
+                format!(
+                    "{}: allowed \"locked\", \"spring\" or \"driven\"",
+                    other.map_or("missing".into(), |k| format!("`{k}`"))
+                ),
             )),
         }
     }
