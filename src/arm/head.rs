@@ -74,6 +74,24 @@ struct BodyPoint {
     turn_rate: f64,
 }
 
+impl BodyPoint {
+    /// Its hub-frame acceleration at zero z̈, the hub turning at `hub_rate`:
+    /// a_vp = 2θ̇ k × ċ − θ̇² c − β̇² ρ.
+    fn velocity_product_accel(&self, hub_rate: f64) -> [f64; 2] {
+        let (w, b2) = (hub_rate, self.turn_rate * self.turn_rate);
+        [
+            -2.0 * w * self.rate[1] - w * w * self.centre[0] - b2 * self.rho[0],
+            2.0 * w * self.rate[0] - w * w * self.centre[1] - b2 * self.rho[1],
+        ]
+    }
+}
+
+/// Gravity `g_m_s2` in the hub frame, the hub at `theta_rad`, m/s².
+fn gravity_in_hub(theta_rad: f64, g_m_s2: f64) -> [f64; 2] {
+    let (s, c) = theta_rad.sin_cos();
+    [-g_m_s2 * s, -g_m_s2 * c]
+}
+
 impl HeadModel {
     /// `head` on `arm`'s coordinates.
     pub fn new(arm: &ArmModel, head: &TiltingHead) -> Self {
@@ -113,15 +131,10 @@ impl HeadModel {
         let body = self.head_point(at.q, at.qd, at.head);
         let point = self.axis_point(at.q, at.qd);
         let (body_j, point_j) = (self.jacobian(&body, n, true), self.jacobian(&point, n, false));
-        let (s, c) = at.hub.0.sin_cos();
-        let gravity = [-g_m_s2 * s, -g_m_s2 * c];
-        let rate = at.hub.1;
-        // m (g − a_vp), a_vp = 2θ̇ k × ċ − θ̇² c − β̇² ρ: the load at zero z̈.
+        let gravity = gravity_in_hub(at.hub.0, g_m_s2);
+        // m (g − a_vp): the load at zero z̈.
         let load = |p: &BodyPoint| {
-            let accel = [
-                -2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
-                2.0 * rate * p.rate[0] - rate * rate * p.centre[1] - p.turn_rate.powi(2) * p.rho[1],
-            ];
+            let accel = p.velocity_product_accel(at.hub.1);
             [m * (gravity[0] - accel[0]), m * (gravity[1] - accel[1])]
         };
         let (body_load, point_load) = (load(&body), load(&point));
@@ -565,19 +578,14 @@ impl ArmSystem<'_> {
         let n = self.arm.elastic_dofs();
         let (theta_dd, at) = self.head_frame(t, x, v);
         let (_, z_accel) = self.z_rates(t, theta_dd, v, a, at.hub.1);
-        let g = self.arm.options.gravity_m_s2;
-        let gravity = [-g * at.hub.0.sin(), -g * at.hub.0.cos()];
+        let gravity = gravity_in_hub(at.hub.0, self.arm.options.gravity_m_s2);
         let m = head.head.mass_kg;
         let body = head.head_point(at.q, at.qd, at.head);
         let point = head.axis_point(at.q, at.qd);
         let load = |p: &BodyPoint, turns: bool, sign: f64| {
-            let accel = HeadModel::velocity(&head.jacobian(p, n, turns), &z_accel);
-            let rate = at.hub.1;
-            let a = [
-                accel[0] - 2.0 * rate * p.rate[1] - rate * rate * p.centre[0] - p.turn_rate.powi(2) * p.rho[0],
-                accel[1] + 2.0 * rate * p.rate[0] - rate * rate * p.centre[1] - p.turn_rate.powi(2) * p.rho[1],
-            ];
-            [sign * m * (gravity[0] - a[0]), sign * m * (gravity[1] - a[1])]
+            let [jx, jy] = HeadModel::velocity(&head.jacobian(p, n, turns), &z_accel);
+            let [vx, vy] = p.velocity_product_accel(at.hub.1);
+            [sign * m * (gravity[0] - jx - vx), sign * m * (gravity[1] - jy - vy)]
         };
         let station = head.head.hinge_station_m;
         let hinge = [body.centre[0] - body.rho[0], body.centre[1] - body.rho[1]];
