@@ -5,8 +5,8 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use pipearm::record::{
-    CENTRELINE_ENTITY, LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, TIP_DEFLECTION_ENTITY, WORST_STATION_ENTITY,
-    YIELD_DRAWN_FROM, YIELD_ENTITY, force_entity, write_recording,
+    CENTRELINE_ENTITY, LEGEND_ENTITY, MODAL_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, TIP_DEFLECTION_ENTITY,
+    WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY, force_entity, write_recording,
 };
 use pipearm::run::{RunOptions, run_with};
 use pipearm::scenario::Scenario;
@@ -52,7 +52,14 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     let force = force_entity("vertical_stop");
     let (paths, forces, times) = read_back(&path, &force);
     assert_eq!(forces.len(), times.len(), "one scalar per row");
+    // The elastic coordinates share one entity, a row per kept step holding every q in order.
+    let (_, q, q_times) = read_back(&path, MODAL_ENTITY);
     std::fs::remove_file(&path).ok();
+    let n = series.modal_dofs;
+    let kept: Vec<usize> = (0..series.t_s.len()).filter(|&k| series.keep[k]).collect();
+    assert!(n > 1 && q_times.len() == kept.len(), "{n} coordinates, {} rows", q_times.len());
+    let want: Vec<f64> = kept.iter().flat_map(|&k| series.modal_q[k * n..(k + 1) * n].iter().copied()).collect();
+    assert_eq!(q, want, "the kept steps' coordinates, q1 first");
     for entity in [
         force.as_str(),
         TIP_DEFLECTION_ENTITY,

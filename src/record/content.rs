@@ -8,7 +8,7 @@ use rerun::log::{Chunk, RowId};
 use rerun::{RecordingStreamResult, TextLogLevel, TimeColumn};
 
 use super::writer::{Writer, centreline_points};
-use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, Recorded, force_entity};
+use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, ENERGY_ENTITY, Ending, MODAL_ENTITY, Recorded, force_entity};
 use crate::contact::{Impact, ImpactTracker};
 use crate::model::StructureShape;
 use crate::scene::{Frame, SceneLayout};
@@ -26,8 +26,9 @@ pub fn arrow_scale_n_per_m(peak_n: f64) -> f64 {
     10f64.powf(peak_n.max(1.0).log10().ceil())
 }
 
-/// The chunks of `run`: one per entity.
-pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
+/// The chunks of `run`, one per entity (two for named series, [`Writer::send_named`]), each
+/// handed to `out` as it is made.
+pub(super) fn chunks(run: &Recorded, out: &mut dyn FnMut(Chunk)) -> RecordingStreamResult<()> {
     let pairs = pairs(run);
     let mut keep = Cow::Borrowed(&run.series.keep[..]);
     if matches!(run.ending, Ending::Diverged { .. })
@@ -36,7 +37,7 @@ pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
         // The plots run up to the last step the guard passed, whatever the record rate.
         *last = true;
     }
-    let mut writer = Writer { chunks: Vec::new(), run, keep: &keep };
+    let mut writer = Writer { out, run, keep: &keep };
     writer.plots(&pairs)?;
     let note = run.series.layout.as_ref().map(|layout| writer.scene(layout, &pairs)).transpose()?;
     writer.events(&pairs, note)?;
@@ -46,8 +47,8 @@ pub(super) fn chunks(run: &Recorded) -> RecordingStreamResult<Vec<Chunk>> {
     }
     // The name the viewer lists the recording under.
     writer.log_static("__properties", &rerun::RecordingInfo::update_fields().with_name(recording_name(run)))?;
-    writer.chunks.extend(run.overlay.iter().cloned());
-    Ok(writer.chunks)
+    run.overlay.iter().cloned().for_each(writer.out);
+    Ok(())
 }
 
 /// What the viewer lists a recording as: its scenario, model and largest peak force, or where it
@@ -111,11 +112,11 @@ impl Writer<'_> {
         self.send("plots/hub/accel_deg_s2", s.hub_accel_rad_s2.iter().map(|a| a.to_degrees()))?;
         self.send("plots/drive_torque", s.drive_torque_n_m.iter().copied())?;
         self.actuator_plots()?;
-        for (k, name) in ["kinetic", "strain", "gravity"].iter().enumerate() {
-            self.send(&format!("plots/energy/{name}"), s.energies_j.iter().map(|e| e[k]))?;
-        }
-        for i in 0..s.modal_dofs {
-            self.send(&format!("plots/modal/q{}", i + 1), s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied())?;
+        let energies = ["kinetic", "strain", "gravity"].map(String::from);
+        self.send_named(ENERGY_ENTITY, &energies, |k, i| s.energies_j[k][i])?;
+        if s.modal_dofs > 0 {
+            let names: Vec<String> = (1..=s.modal_dofs).map(|i| format!("q{i}")).collect();
+            self.send_named(MODAL_ENTITY, &names, |k, i| s.modal_q[k * s.modal_dofs + i])?;
         }
         if !s.string_slip_m.is_empty() {
             self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
@@ -357,7 +358,7 @@ impl Writer<'_> {
                 chunk.with_archetype(RowId::new(), time, &rerun::TextLog::new(message).with_level(level))
             })
             .build()?;
-        self.chunks.push(chunk);
+        (self.out)(chunk);
         Ok(())
     }
 }

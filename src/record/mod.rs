@@ -16,8 +16,8 @@
 //! | `plots/tip_velocity/{axial,transverse}` | tip velocity in the hub frame, m/s |
 //! | `plots/hub/{angle_deg,rate_deg_s,accel_deg_s2}` | hub motion |
 //! | `plots/drive_torque` | N·m |
-//! | `plots/modal/q<i>` | elastic coordinates (modal models) |
-//! | `plots/energy/{kinetic,strain,gravity}` | J |
+//! | `plots/modal` | elastic coordinates (modal models), one instance each, named `q<i>` from 1 |
+//! | `plots/energy` | kinetic, strain and gravity energy, J: three instances, named so |
 //! | `plots/string_slip` | friction clamp slip, m |
 //! | `plots/head/angle_deg` | a tilting head's angle on its hinge, deg |
 //! | `plots/head/drive_torque` | a driven head's drive torque on the head, N·m |
@@ -93,6 +93,12 @@ pub const CENTRELINE_ENTITY: &str = "world/centreline";
 /// Entity path of the contact points and their force arrows.
 pub const CONTACT_FORCE_ENTITY: &str = "world/contact_force";
 
+/// Entity path of the energies: kinetic, strain and gravity, an instance each.
+pub const ENERGY_ENTITY: &str = "plots/energy";
+
+/// Entity path of the elastic coordinates, an instance each (`q1`, `q2`, …).
+pub const MODAL_ENTITY: &str = "plots/modal";
+
 /// Entity path of the transverse tip deflection series.
 pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection/transverse";
 
@@ -149,10 +155,7 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     }
     let tmp = path.with_extension("rrd.tmp");
     let file = std::fs::File::create(&tmp).map_err(io)?;
-    let written = content::chunks(run).map_err(|e| e.to_string()).and_then(|chunks| {
-        let layout = layout::run_layout(layout::RunViews::of(run.series));
-        write_rrd(file, &recording_id(run), &chunks, &layout)
-    });
+    let written = write_rrd(file, run);
     if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
         return Err(RecordError::Rrd { path: shown, message });
@@ -170,25 +173,28 @@ fn recording_id(run: &Recorded) -> String {
     format!("{}-{digest:016x}", run.ending.scenario())
 }
 
-/// The recording `recording_id` of `chunks`, then its blueprint `layout`, into `file`.
-fn write_rrd(
-    file: std::fs::File,
-    recording_id: &str,
-    chunks: &[rerun::log::Chunk],
-    layout: &layout::BlueprintLayout,
-) -> Result<(), String> {
-    let mut out = rrd::RrdFile::create(file, "pipearm", recording_id)?;
-    for chunk in chunks {
-        out.send_chunk(chunk)?;
-    }
-    out.blueprint(layout)?;
+/// `run` into `file`: each chunk encoded as it is made (and its memory reused for the next), then
+/// the blueprint.
+fn write_rrd(file: std::fs::File, run: &Recorded) -> Result<(), String> {
+    let mut out = rrd::RrdFile::create(file, "pipearm", &recording_id(run))?;
+    let mut encoded = Ok(());
+    content::chunks(run, &mut |chunk| {
+        if encoded.is_ok() {
+            encoded = out.send_chunk(&chunk);
+        }
+    })
+    .map_err(|e| e.to_string())?;
+    encoded?;
+    out.blueprint(&layout::run_layout(layout::RunViews::of(run.series)))?;
     out.finish()
 }
 
 /// Streams `run` to `viewer`, as a new recording named after its scenario.
 pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordError> {
     let target = viewer.to_string();
-    let chunks = content::chunks(run).map_err(|source| RecordError::Stream { target: target.clone(), source })?;
+    let mut chunks = Vec::new();
+    content::chunks(run, &mut |chunk| chunks.push(chunk))
+        .map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
     out.send_chunks(chunks);
     stream::finish(out, &target, layout::RunViews::of(run.series))

@@ -10,8 +10,8 @@ use crate::scene::{Frame, SceneLayout};
 
 /// A recording's chunks being made from `run`.
 pub(super) struct Writer<'a> {
-    /// The chunks so far.
-    pub(super) chunks: Vec<Chunk>,
+    /// Takes each chunk as it is made.
+    pub(super) out: &'a mut dyn FnMut(Chunk),
     /// The run.
     pub(super) run: &'a Recorded<'a>,
     /// Steps the plots keep.
@@ -28,13 +28,13 @@ impl Writer<'_> {
     ) -> RecordingStreamResult<()> {
         let indexes = std::iter::once((*index.timeline().name(), index)).collect();
         let components: ChunkComponents = columns.into_iter().map(|c| (c.descriptor, c.list_array)).collect();
-        self.chunks.push(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
+        (self.out)(Chunk::from_auto_row_ids(ChunkId::new(), entity.into(), indexes, components)?);
         Ok(())
     }
 
     /// A static archetype of `entity`.
     pub(super) fn log_static(&mut self, entity: &str, archetype: &dyn AsComponents) -> RecordingStreamResult<()> {
-        self.chunks.push(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
+        (self.out)(Chunk::builder(entity).with_archetype(RowId::new(), TimePoint::default(), archetype).build()?);
         Ok(())
     }
 
@@ -54,6 +54,25 @@ impl Writer<'_> {
         let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| self.run.series.t_s[k]));
         let columns = rerun::Scalars::new(rows.into_iter().map(value)).columns_of_unit_batches()?;
         self.send_columns(entity, times, columns)
+    }
+
+    /// The kept steps of several series of one kind as one entity, an instance per series, named
+    /// by `names` in the viewer's legend (static, so one name per series, not per row): two
+    /// chunks where an entity per series would take one each, and rerun's cost is per chunk.
+    /// `value(step, i)` is series i at `step`.
+    pub(super) fn send_named(
+        &mut self,
+        entity: &str,
+        names: &[String],
+        value: impl Fn(usize, usize) -> f64,
+    ) -> RecordingStreamResult<()> {
+        let width = names.len();
+        let rows: Vec<usize> = (0..self.run.series.t_s.len()).filter(|&k| self.keeps(k)).collect();
+        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| self.run.series.t_s[k]));
+        let values = rows.iter().flat_map(|&k| (0..width).map(move |i| (k, i))).map(|(k, i)| value(k, i));
+        let scalars = rerun::Scalars::new(values).columns(std::iter::repeat_n(width, rows.len()))?;
+        self.send_columns(entity, times, scalars)?;
+        self.log_static(entity, &rerun::SeriesLines::new().with_names(names.iter().map(String::as_str)))
     }
 
     pub(super) fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
