@@ -174,9 +174,8 @@ fn run_and_record(scenario: &Scenario, out: &Path) {
     use pipearm::run::{RunOptions, run_with};
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).unwrap();
-    let pads = scenario.model.pair_series_names();
     let name = &scenario.model.name;
-    write_recording(&out.join(format!("{name}.rrd")), &summary, &series, &pads).unwrap();
+    write_recording(&out.join(format!("{name}.rrd")), &summary, &series).unwrap();
     write_summary(&out.join(format!("{name}.summary.json")), &summary).unwrap();
 }
 

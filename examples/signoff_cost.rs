@@ -39,8 +39,7 @@ fn job(out: &Path, sign_off: bool) -> f64 {
     let scenario = Scenario::load(&default_scenario()).expect("the default scenario loads");
     let options = RunOptions { sign_off, capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).expect("the default scenario runs");
-    let pads = scenario.model.pair_series_names();
-    write_recording(&out.join("default.rrd"), &summary, &series, &pads).expect("the recording is written");
+    write_recording(&out.join("default.rrd"), &summary, &series).expect("the recording is written");
     write_summary(&out.join("default.summary.json"), &summary).expect("the summary is written");
     started.elapsed().as_secs_f64()
 }

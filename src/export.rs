@@ -12,7 +12,8 @@
 //! also insert each impact's peak interpolated between two steps; the tables do not, the summary
 //! reports those peaks.)
 //!
-//! Columns, in this order, SI units in brackets after the name:
+//! Columns, in this order, SI units in brackets after the name: the time, then each channel its
+//! producer declares for the tables, in their order ([`crate::channel`]), then the sign-off's:
 //!
 //! | column | what |
 //! |---|---|
@@ -21,16 +22,17 @@
 //! | `tip_deflection.axial[m]`, `tip_deflection.transverse[m]` | tip displacement in the hub frame |
 //! | `tip_velocity.axial[m/s]`, `tip_velocity.transverse[m/s]` | tip velocity relative to the hub frame |
 //! | `drive_torque[N*m]` | torque of the drive on the hub |
-//! | `actuator.tracking_error[rad]`, `actuator.command[N*m or 1]`, `actuator.rod_force[N]`, `actuator.pressure.cap[Pa]`, `actuator.pressure.rod[Pa]` | a servo's or hydraulic drive's channels as the actuator declares them ([`crate::actuator::channels`]; several cylinders numbered) |
-//! | `contact_force.<pad>[N]` | contact force, one column per pad |
+//! | `actuator.tracking_error[rad]`, `actuator.command[N*m or 1]`, `actuator.rod_force[N]`, `actuator.pressure.cap[Pa]`, `actuator.pressure.rod[Pa]` | a servo's or hydraulic drive's channels ([`crate::actuator::channels`]; several cylinders numbered) |
+//! | `contact_force.<pair>[N]` | contact force, one column per pair (`<pad>`, `<structure>`, `string-<structure>`) |
+//! | `head.angle[rad]`, `head.drive_torque[N*m]` | a tilting head's angle on its hinge; a driven head's drive torque |
 //! | `string_slip[m]`, `jaw_sinking[m]` | friction clamp only |
 //! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |
+//! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
+//! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
 //! | `stress.worst[Pa]` | σ at the section and fibre of the run's peak stress ([`crate::stress`]) |
 //! | `pivot.force.x[N]`, `pivot.force.y[N]` | the pivot's force on the arm, world |
 //! | `cylinder_pin.force.x[N]`, `cylinder_pin.force.y[N]` | the rod's force on the arm's pin, world (with a cylinder; of several, `cylinder_pin.<k>.force.x[N]`, k from 1 in the URDF's order) |
 //! | `grip.<hand>.force.axial[N]`, `.force.transverse[N]`, `.moment[N*m]` | each hand's grip on the string, arm frame (a rigid string's hands read as pins) |
-//! | `energy.kinetic[J]`, `energy.strain[J]`, `energy.gravity[J]` | energies |
-//! | `modal.q<i>[m*kg^0.5]` | mass-normalised elastic coordinates, i from 1 (modal models only) |
 //!
 //! Units are written in ASCII (`^`, `*`) so a column can be typed as a pandas key. A signal has the
 //! same name here as in a measured file for `pipearm compare` (energies and modal coordinates are
@@ -70,9 +72,6 @@ pub enum ExportError {
     /// From the Parquet writer.
     #[error("tables: {path}: {source}")]
     Parquet { path: PathBuf, source: parquet::errors::ParquetError },
-    /// The pad names do not match the series' pads.
-    #[error("tables: {names} pad names for {series} contact force series")]
-    PadCount { names: usize, series: usize },
 }
 
 /// One column of a table: its header (name and unit) and a value per row.
@@ -122,11 +121,9 @@ pub fn table_path(folder: &Path, name: &str, rate: Rate, extension: &str) -> Pat
     folder.join(format!("{name}.{}.{extension}", rate.tag()))
 }
 
-/// The columns of a table of `series` at `rate`; `pad_names` name the contact force series.
-pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<Column>, ExportError> {
-    if pad_names.len() != series.pad_force_n.len() {
-        return Err(ExportError::PadCount { names: pad_names.len(), series: series.pad_force_n.len() });
-    }
+/// The columns of a table of `series` at `rate`: the time, every channel its producers declare
+/// for the tables ([`crate::channel`]), in their order, then the sign-off's.
+pub fn columns(series: &Series, rate: Rate) -> Vec<Column> {
     let rows = |values: &mut dyn Iterator<Item = f64>| -> Vec<f64> {
         match rate {
             Rate::Steps => values.collect(),
@@ -139,47 +136,11 @@ pub fn columns(series: &Series, pad_names: &[String], rate: Rate) -> Result<Vec<
     };
     let s = series;
     push("t[s]".into(), &mut s.t_s.iter().copied());
-    push("hub.angle[rad]".into(), &mut s.hub_angle_rad.iter().copied());
-    push("hub.rate[rad/s]".into(), &mut s.hub_rate_rad_s.iter().copied());
-    push("hub.accel[rad/s^2]".into(), &mut s.hub_accel_rad_s2.iter().copied());
-    for (k, axis) in ["axial", "transverse"].into_iter().enumerate() {
-        push(format!("tip_deflection.{axis}[m]"), &mut s.tip_deflection_m.iter().map(|d| d[k]));
-    }
-    for (k, axis) in ["axial", "transverse"].into_iter().enumerate() {
-        push(format!("tip_velocity.{axis}[m/s]"), &mut s.tip_velocity_m_s.iter().map(|v| v[k]));
-    }
-    push("drive_torque[N*m]".into(), &mut s.drive_torque_n_m.iter().copied());
-    // The actuator's channels as it declares them (crate::actuator::channels).
-    for channel in &s.actuator_channels {
-        push(format!("{}[{}]", channel.name, channel.unit), &mut s.actuator.iter().map(|o| channel.of(o)));
-    }
-    for (name, forces) in pad_names.iter().zip(&s.pad_force_n) {
-        push(format!("contact_force.{name}[N]"), &mut forces.iter().copied());
-    }
-    if !s.head_angle_rad.is_empty() {
-        push("head.angle[rad]".into(), &mut s.head_angle_rad.iter().copied());
-    }
-    if !s.head_drive_torque_n_m.is_empty() {
-        push("head.drive_torque[N*m]".into(), &mut s.head_drive_torque_n_m.iter().copied());
-    }
-    if !s.string_slip_m.is_empty() {
-        push("string_slip[m]".into(), &mut s.string_slip_m.iter().copied());
-        push("jaw_sinking[m]".into(), &mut s.jaw_sinking_m.iter().copied());
-    }
-    for sensor in &s.sensors {
-        for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
-            let header = format!("{}.{}[{}]", sensor.sensor.name, channel.name, channel.unit);
-            push(header, &mut sensor.values.iter().map(|v| v[k]));
-        }
+    for channel in s.channels.iter().filter(|c| c.tabled) {
+        push(channel.header(), &mut (0..s.t_s.len()).map(|k| s.value(channel.reading(), k)));
     }
     sign_off_columns(s, &mut push);
-    for (k, kind) in ["kinetic", "strain", "gravity"].into_iter().enumerate() {
-        push(format!("energy.{kind}[J]"), &mut s.energies_j.iter().map(|e| e[k]));
-    }
-    for i in 0..s.modal_dofs {
-        push(format!("modal.q{}[m*kg^0.5]", i + 1), &mut s.modal_q.iter().skip(i).step_by(s.modal_dofs).copied());
-    }
-    Ok(out)
+    out
 }
 
 /// The sign-off's columns (`docs/sign-off.md`), when the run read them: σ at the section and fibre
@@ -228,10 +189,10 @@ fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<I
 /// Writes the steps and decimated tables of `series` (run `name`) as CSV and Parquet into
 /// `folder`, creating it if needed: all four files, or none (an older set is left as it was
 /// unless the error came while renaming, which leaves no set).
-pub fn write_tables(folder: &Path, name: &str, series: &Series, pad_names: &[String]) -> Result<Written, ExportError> {
+pub fn write_tables(folder: &Path, name: &str, series: &Series) -> Result<Written, ExportError> {
     make_folder(folder)?;
     let mut staged: Vec<Staged> = Vec::new();
-    let written = stage(folder, name, series, pad_names, &mut staged);
+    let written = stage(folder, name, series, &mut staged);
     if written.is_err() {
         staged.iter().for_each(|s| drop(std::fs::remove_file(&s.tmp)));
         return written;
@@ -273,17 +234,11 @@ impl Staged {
 }
 
 /// Writes the four files under their temporary names (listed in `staged`).
-fn stage(
-    folder: &Path,
-    name: &str,
-    series: &Series,
-    pad_names: &[String],
-    staged: &mut Vec<Staged>,
-) -> Result<Written, ExportError> {
+fn stage(folder: &Path, name: &str, series: &Series, staged: &mut Vec<Staged>) -> Result<Written, ExportError> {
     let mut written = Written { paths: Vec::new(), rows: [0; 2], bytes: [0; 2] };
     let size = |path: &Path| std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
     for (r, rate) in Rate::ALL.into_iter().enumerate() {
-        let table = columns(series, pad_names, rate)?;
+        let table = columns(series, rate);
         written.rows[r] = table.first().map_or(0, |c| c.values.len());
         let (file, tmp, path) = Staged::create(folder, name, rate, "csv", staged)?;
         write_csv(BufWriter::new(file), &table).map_err(|source| ExportError::Io { path, source })?;

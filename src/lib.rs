@@ -14,6 +14,7 @@ pub mod arm;
 pub mod beam;
 pub mod bench;
 pub mod capacity;
+pub mod channel;
 pub mod compare;
 pub mod compile;
 pub mod contact;

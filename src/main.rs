@@ -312,19 +312,18 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     let model = &scenario.model;
     let (result, series) = run_partial(model, &options, &scenario.compiler);
     let name = &model.name;
-    let pads = model.pair_series_names();
     let summary = match result {
         Ok(summary) => summary,
         Err(error @ SceneError::Diverged { t_s, .. }) if options.capture_frames => {
             let message = error.to_string();
             let ending = Ending::Diverged { scenario: name, t_s, message: &message };
-            record_divergence(&outputs, name, &Recorded { series: &series, pad_names: &pads, ending, overlay: &[] });
+            record_divergence(&outputs, name, &Recorded { series: &series, ending, overlay: &[] });
             return Err(anyhow::Error::new(error).context(format!("{}: running", path.display())));
         }
         Err(error) => return Err(error).with_context(|| format!("{}: running", path.display())),
     };
     print_summary(path, &summary);
-    let run = Recorded { series: &series, pad_names: &pads, ending: Ending::Finished(&summary), overlay: &[] };
+    let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
     if let Some(out) = outputs.files {
         let started = std::time::Instant::now();
         let rrd = out.join(format!("{name}.rrd"));
@@ -392,8 +391,7 @@ fn write_tables(
     model: &pipearm::model::Model,
 ) -> Result<()> {
     let started = std::time::Instant::now();
-    let pads = model.pair_series_names();
-    let written = pipearm::export::write_tables(out, name, series, &pads)?;
+    let written = pipearm::export::write_tables(out, name, series)?;
     let [steps, decimated] = written.rows;
     let [csv, parquet] = written.bytes.map(|b| b as f64 / 1e6);
     println!(

@@ -17,8 +17,10 @@ pub use crate::sensor::summary::{ChannelPeak, SensorSummary};
 use crate::sensor::{Sensor, SensorProbe};
 use crate::stress::StressProbe;
 
+mod channels;
 mod readings;
 
+pub use channels::{channels, measurable_channels};
 pub use readings::HeadSummary;
 use readings::{read_head, read_sensors, read_string};
 
@@ -41,9 +43,12 @@ pub struct Series {
     pub drive_torque_n_m: Vec<f64>,
     /// The actuator's outputs per step (empty under an ideal drive).
     pub actuator: Vec<ActuatorOutputs>,
-    /// The actuator's channels as it declares them (names, units, plots), which the recording
-    /// plots.
-    pub actuator_channels: Vec<crate::actuator::ActuatorChannel>,
+    /// The run's channels as their producers declare them ([`crate::channel`]): what the
+    /// recording plots and the tables hold.
+    pub channels: Vec<crate::channel::Channel>,
+    /// Each contact pair's name (`arm-<pad>`, `string-<structure>`), in the order of
+    /// `pad_force_n`.
+    pub pair_names: Vec<String>,
     /// Contact force per pad (outer index: pad), N.
     pub pad_force_n: Vec<Vec<f64>>,
     /// Slip of a friction-clamped string along the arm, m (empty with a rigid clamp).
@@ -362,7 +367,8 @@ fn simulate(
     let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
     let pads = scene.pairs().count();
     *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
-    series.actuator_channels = crate::actuator::channels(&model.drive.actuator);
+    series.channels = channels(model, modal_dofs);
+    series.pair_names = crate::scene::pair_names(model);
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];

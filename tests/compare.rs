@@ -9,7 +9,7 @@ use std::process::Command;
 
 use pipearm::compare::align::interpolate;
 use pipearm::compare::overlay::measured_chunks;
-use pipearm::compare::{CompareOptions, compare, signal_defs};
+use pipearm::compare::{CompareOptions, compare, measurable_channels};
 use pipearm::model::Model;
 use pipearm::run::run;
 use pipearm::scenario::Scenario;
@@ -119,7 +119,7 @@ fn a_run_against_its_own_shifted_channels() {
     let hand = unshifted.signals.iter().find(|s| s.signal == "hand.transverse").unwrap();
     assert!(hand.rms_error_over_peak > 100.0 * c.signals[0].rms_error_over_peak, "{hand:?}");
     // The overlay: one chunk per column under its plot, `/measured`, every sample from t = 0.
-    let defs = signal_defs(&model);
+    let defs = measurable_channels(&model);
     let chunks = measured_chunks(&measured, &aligned.columns, c, &defs).unwrap();
     let entities: Vec<String> = chunks.iter().map(|c| c.entity_path().to_string()).collect();
     assert_eq!(

@@ -38,11 +38,13 @@ fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec
     for (pad, forces) in pads.iter().zip(&series.pad_force_n) {
         columns.push((format!("contact_force.{pad}[N]"), forces.clone()));
     }
+    if !series.head_angle_rad.is_empty() {
+        columns.push(("head.angle[rad]".into(), series.head_angle_rad.clone()));
+    }
     if !series.string_slip_m.is_empty() {
         columns.push(("string_slip[m]".into(), series.string_slip_m.clone()));
         columns.push(("jaw_sinking[m]".into(), series.jaw_sinking_m.clone()));
     }
-    sign_off_columns(series, &mut columns);
     for (k, kind) in ["kinetic", "strain", "gravity"].iter().enumerate() {
         columns.push((format!("energy.{kind}[J]"), series.energies_j.iter().map(|e| e[k]).collect()));
     }
@@ -51,6 +53,7 @@ fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec
         let q = (0..series.t_s.len()).map(|step| series.modal_q[step * n + i]).collect();
         columns.push((format!("modal.q{}[m*kg^0.5]", i + 1), q));
     }
+    sign_off_columns(series, &mut columns);
     if keep_only {
         for (_, values) in &mut columns {
             *values = values.iter().zip(&series.keep).filter(|(_, k)| **k).map(|(v, _)| *v).collect();
@@ -147,8 +150,7 @@ fn assert_same(file: &Path, read: &[(String, Vec<f64>)], want: &[(String, Vec<f6
 /// Writes the tables of `series` and checks all four against the series.
 fn check_round_trip(name: &str, series: &Series, pads: &[&str]) {
     let dir = scratch(name);
-    let pad_names: Vec<String> = pads.iter().map(|p| p.to_string()).collect();
-    let written = write_tables(&dir, name, series, &pad_names).unwrap();
+    let written = write_tables(&dir, name, series).unwrap();
     assert_eq!(written.paths.len(), 4);
     for (tag, keep_only) in [("steps", false), ("decimated", true)] {
         let want = expected(series, pads, keep_only);
@@ -198,7 +200,7 @@ fn a_hydraulic_runs_tables_hold_its_actuators_channels_after_the_drive_torque() 
     let at = want.iter().position(|(name, _)| name == "drive_torque[N*m]").unwrap() + 1;
     want.splice(at..at, actuator);
     let dir = scratch("twin");
-    write_tables(&dir, "twin", &series, &["vertical_stop".into()]).unwrap();
+    write_tables(&dir, "twin", &series).unwrap();
     let file = dir.join("twin.steps.csv");
     assert_same(&file, &read_csv(&file), &want);
     std::fs::remove_dir_all(&dir).ok();
@@ -214,6 +216,15 @@ fn a_friction_clamped_run_has_its_slip_columns() {
 }
 
 #[test]
+fn a_tilting_heads_run_has_its_angle_column() {
+    let scenario = Scenario::load(&manifest().join("scenarios/tilting_head.toml")).unwrap();
+    let (_, series) = run(&scenario.model, None).unwrap();
+    assert!(!series.head_angle_rad.is_empty());
+    let pads: Vec<&str> = scenario.model.dampeners.iter().map(|d| d.name.as_str()).collect();
+    check_round_trip("tilting_head", &series, &pads);
+}
+
+#[test]
 fn two_pads_give_one_force_column_each() {
     let scenario = Scenario::load(&manifest().join("scenarios/default.toml")).unwrap();
     let mut model = scenario.model.clone();
@@ -224,7 +235,7 @@ fn two_pads_give_one_force_column_each() {
     let (_, series) = run(&model, None).unwrap();
     assert_eq!(series.pad_force_n.len(), 2);
     let dir = scratch("two-pads");
-    write_tables(&dir, "two", &series, &["vertical_stop".into(), "inner_stop".into()]).unwrap();
+    write_tables(&dir, "two", &series).unwrap();
     let csv = read_csv(&dir.join("two.steps.csv"));
     let forces: Vec<&str> = csv.iter().map(|c| c.0.as_str()).filter(|h| h.starts_with("contact_force")).collect();
     assert_eq!(forces, ["contact_force.vertical_stop[N]", "contact_force.inner_stop[N]"]);
@@ -241,13 +252,10 @@ fn a_file_where_the_folder_should_be_is_named_and_nothing_is_written() {
     let file = dir.join("recordings");
     std::fs::write(&file, "a file").unwrap();
     for out in [file.clone(), file.join("nested")] {
-        let error = write_tables(&out, "default", &series, &["vertical_stop".into()]).unwrap_err();
+        let error = write_tables(&out, "default", &series).unwrap_err();
         assert!(matches!(&error, ExportError::NotAFolder { file: f, .. } if *f == file), "{error}");
         assert!(error.to_string().contains("is a file, not a folder"), "{error}");
     }
-    // A wrong pad count is an error too, caught before any file is made.
-    let error = write_tables(&dir, "default", &series, &[]).unwrap_err();
-    assert!(matches!(error, ExportError::PadCount { names: 0, series: 1 }), "{error}");
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(left, ["recordings"], "only the file put there");
     assert_eq!(std::fs::read_to_string(&file).unwrap(), "a file");

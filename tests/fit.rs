@@ -8,12 +8,12 @@ mod common;
 use std::path::Path;
 
 use pipearm::arm::Fidelity;
-use pipearm::compare::signal_defs;
 use pipearm::contact::ForceLaw;
 use pipearm::fit::{Problem, RunSettings, Signal, fit, lm::LmOptions};
 use pipearm::integrate::IntegratorKind;
 use pipearm::model::Model;
 use pipearm::run::Series;
+use pipearm::run::measurable_channels;
 use pipearm::run::run;
 use pipearm::scenario::Scenario;
 
@@ -28,7 +28,7 @@ fn settings() -> RunSettings {
 
 /// The run's signal `name` at every step.
 fn simulated(model: &Model, name: &str, series: &Series) -> Vec<f64> {
-    signal_defs(model).into_iter().find(|d| d.name == name).unwrap().values(series)
+    series.values(&measurable_channels(model).into_iter().find(|d| d.name == name).unwrap())
 }
 
 /// Deterministic noise in [−1, 1] (a linear congruential generator): the test needs no crate.

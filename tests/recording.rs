@@ -48,7 +48,7 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-recording-{}.rrd", std::process::id()));
-    write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
+    write_recording(&path, &summary, &series).unwrap();
     let force = force_entity("vertical_stop");
     let (paths, forces, times) = read_back(&path, &force);
     assert_eq!(forces.len(), times.len(), "one scalar per row");
@@ -101,7 +101,7 @@ fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) 
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-blueprint-{}.rrd", std::process::id()));
-    write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
+    write_recording(&path, &summary, &series).unwrap();
     let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
     let messages = re_log_encoding::DecoderApp::decode_eager(file).unwrap().map(Result::unwrap).collect();
     std::fs::remove_file(&path).ok();
@@ -195,7 +195,7 @@ fn the_recording_plots_the_worst_stress_against_its_yield_and_the_pin_loads() {
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let (summary, series) = run_with(&scenario.model, &options).unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-stress-recording-{}.rrd", std::process::id()));
-    write_recording(&path, &summary, &series, &["vertical_stop".to_string()]).unwrap();
+    write_recording(&path, &summary, &series).unwrap();
     let sign_off = summary.sign_off.as_ref().expect("the default run signs off");
     let stress = &sign_off.stress;
     let (paths, sigma, _) = read_back(&path, WORST_STATION_ENTITY);

@@ -27,7 +27,7 @@ mod plant;
 pub mod servo;
 mod summary;
 
-pub use channels::{ActuatorChannel, channels};
+pub use channels::channels;
 pub use column::{CylinderStrokes, PerCylinder, Stroke};
 pub use controller::{Controller, ControllerGains};
 pub use hydraulic::{Cylinder, Cylinders, HydraulicCircuit, HydraulicDrive, Valve, ValveFeed, cylinder_number};

@@ -21,6 +21,7 @@
 //! Without geometric stiffening K_c and K_g are dropped (W = M_tr): the classic model that goes
 //! unstable once the spin rate exceeds the first frequency.
 
+mod channels;
 mod contact;
 mod dynamics;
 mod head;
@@ -38,6 +39,7 @@ use crate::beam::{BeamError, BeamModel, ModalBasis};
 use crate::drive::DriveError;
 use crate::integrate::IntegrateError;
 
+pub use channels::{ENERGY_ENTITY, MODAL_ENTITY, TIP_DEFLECTION_ENTITY, channels, head_channels, state_channels};
 pub use contact::{ArmContact, ContactState, PointContact};
 pub use dynamics::{ArmSystem, GeneralizedLoad, HubCache, HubDrive};
 pub use head::{HeadModel, HeadState};

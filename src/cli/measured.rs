@@ -20,12 +20,11 @@ pub fn compare_command(
     let model = &scenario.model;
     let compared = pipearm::compare::compare(model, &measured, &options)?;
     print!("{}", pipearm::compare::table(&compared.comparison));
-    let defs = pipearm::compare::signal_defs(model);
+    let defs = pipearm::run::measurable_channels(model);
     let overlay =
         pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;
-    let pads = model.pair_series_names();
     let ending = Ending::Finished(&compared.summary);
-    let recorded = Recorded { series: &compared.series, pad_names: &pads, ending, overlay: &overlay };
+    let recorded = Recorded { series: &compared.series, ending, overlay: &overlay };
     let rrd = out.join(format!("{}.compare.rrd", model.name));
     save_recording(&rrd, &recorded)?;
     let json = out.join(format!("{}.compare.json", model.name));

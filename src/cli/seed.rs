@@ -20,8 +20,7 @@ pub fn seed(only: Option<&str>, project: &Project, out: &Path) -> Result<()> {
         let variants = pipearm::seed::run_family(&files, true)?;
         let dir = out.join("seed").join(&section);
         for v in &variants {
-            let pads = v.scenario.model.pair_series_names();
-            write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series, &pads)?;
+            write_recording(&dir.join(format!("{}.rrd", v.name)), &v.summary, &v.series)?;
         }
         let chart = out.join("seed").join(format!("{section}.svg"));
         pipearm::seed::chart(&chart, &section, &variants)?;

@@ -1,7 +1,8 @@
 //! A run set against measurements: `pipearm compare SCENARIO --measured FILE.csv`.
 //!
 //! The measured file ([`crate::measured`]) names, per column, a signal of the run
-//! ([`signal_defs`]: sensor channels and the run's series). Its columns are checked against the
+//! ([`measurable_channels`]: the channels a measured column may name, as their producers declare
+//! them, [`crate::channel`]). Its columns are checked against the
 //! scenario's signals before anything runs; then the scenario runs, optionally the measured file
 //! is shifted in time to the cross-correlation's peak ([`align::estimate_shift`], one shift for
 //! every column), the simulated signal is interpolated linearly at the measured times (within
@@ -17,7 +18,6 @@
 
 pub mod align;
 pub mod overlay;
-mod signals;
 
 use std::path::{Path, PathBuf};
 
@@ -28,9 +28,10 @@ use crate::analysis::residual;
 use crate::arm::Fidelity;
 use crate::measured::{Column, Known, Measured, MeasuredError};
 use crate::model::Model;
+pub use crate::run::measurable_channels;
 use crate::run::{RunOptions, RunSummary, Series, run_with};
 use crate::scene::SceneError;
-pub use signals::{SignalDef, sensor_entity, signal_defs};
+pub use crate::sensor::sensor_entity;
 
 /// Errors of a comparison.
 #[derive(Debug, Error)]
@@ -131,7 +132,7 @@ pub struct Compared {
 /// Checks `measured`'s columns against `model`'s signals (nothing runs if they do not fit),
 /// runs the model and compares.
 pub fn compare(model: &Model, measured: &Measured, options: &CompareOptions) -> Result<Compared, CompareError> {
-    let defs = signal_defs(model);
+    let defs = measurable_channels(model);
     let known: Vec<Known> = defs.iter().map(|d| Known { name: &d.name, unit: d.unit }).collect();
     let columns = measured.to_si(&known)?;
     // With the 3D scene, for the recording the measured series are drawn over.
@@ -139,7 +140,7 @@ pub fn compare(model: &Model, measured: &Measured, options: &CompareOptions) -> 
     let (summary, series) = run_with(model, &run_options)?;
     let simulated: Vec<Vec<f64>> = columns
         .iter()
-        .map(|c| defs.iter().find(|d| d.name == c.name).expect("checked by to_si").values(&series))
+        .map(|c| series.values(defs.iter().find(|d| d.name == c.name).expect("checked by to_si")))
         .collect();
     let shift_s = options.shift.then(|| {
         let pairs: Vec<align::Pair> = columns

@@ -9,7 +9,8 @@
 
 use rerun::log::{Chunk, ChunkComponents, ChunkId};
 
-use super::{Comparison, SignalDef};
+use super::Comparison;
+use crate::channel::Channel;
 use crate::measured::{Column, Measured};
 
 /// An error from rerun's chunk builder.
@@ -33,19 +34,19 @@ pub fn measured_chunks(
     measured: &Measured,
     columns: &[Column],
     comparison: &Comparison,
-    defs: &[SignalDef],
+    defs: &[Channel],
 ) -> Result<Vec<Chunk>, OverlayError> {
     let shift = comparison.shift_s.unwrap_or(0.0);
     let mut chunks = Vec::with_capacity(columns.len());
     for column in columns {
-        let Some(def) = defs.iter().find(|d| d.name == column.name) else { continue };
-        let entity = measured_entity(&def.entity);
+        let Some(plot) = defs.iter().find(|d| d.name == column.name).and_then(|d| d.plot.as_ref()) else { continue };
+        let entity = measured_entity(&plot.entity);
         let error = |e: &dyn std::fmt::Display| OverlayError { entity: entity.clone(), message: e.to_string() };
         let rows: Vec<(f64, f64)> = measured
             .t_s
             .iter()
             .zip(&column.values)
-            .map(|(t, v)| (t - shift, v * def.plot_scale))
+            .map(|(t, v)| (t - shift, v * plot.scale))
             .filter(|(t, _)| *t >= 0.0)
             .collect();
         let index = rerun::TimeColumn::new_duration_secs("sim_time", rows.iter().map(|r| r.0));

@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use crate::arm::Fidelity;
-use crate::compare::SignalDef;
+use crate::channel::Channel;
 use crate::compile::Compiler;
 use crate::robot::Robot;
 use crate::run::{RunOptions, RunSummary, Series, run_reusing};
@@ -95,7 +95,7 @@ fn bounds_of(key: &str, initial: f64) -> Result<(f64, f64), String> {
 /// A measured signal.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Signal {
-    /// The simulated signal it is compared with (a name of [`crate::compare::signal_defs`]).
+    /// The simulated signal it is compared with (a name of [`crate::run::measurable_channels`]).
     pub name: String,
     /// Times, s, increasing.
     pub t_s: Vec<f64>,
@@ -117,7 +117,7 @@ pub struct RunSettings {
 /// The measured file's columns as signals to fit, checked against the signals a run of `model`
 /// gives (names and units, converted to SI).
 pub fn signals_of(measured: &crate::measured::Measured, model: &crate::model::Model) -> Result<Vec<Signal>, FitError> {
-    let defs = crate::compare::signal_defs(model);
+    let defs = crate::run::measurable_channels(model);
     let known: Vec<crate::measured::Known> =
         defs.iter().map(|d| crate::measured::Known { name: &d.name, unit: d.unit }).collect();
     let columns = measured.to_si(&known).map_err(Box::new)?;
@@ -132,7 +132,7 @@ pub struct Problem {
     robot: Robot,
     settings: RunSettings,
     /// The signals a run of the scenario gives.
-    defs: Vec<SignalDef>,
+    defs: Vec<Channel>,
     /// The parameters, in `--params` order.
     pub parameters: Vec<Parameter>,
     /// The beams and arms compiled so far: a fit's runs vary a few keys, which seldom touch them.
@@ -160,7 +160,7 @@ impl Problem {
                 Ok(Parameter { key: key.clone(), initial, bounds })
             })
             .collect::<Result<Vec<_>, FitError>>()?;
-        let defs = crate::compare::signal_defs(&scenario.model);
+        let defs = crate::run::measurable_channels(&scenario.model);
         let robot = scenario.model.robot.clone();
         let compiler = std::sync::Arc::new(Compiler::new());
         Ok(Problem { path: path.clone(), document, robot, settings, defs, parameters, compiler })
@@ -371,12 +371,12 @@ fn resample(t_sim: &[f64], values: &[f64], t_s: &[f64]) -> Vec<f64> {
 }
 
 /// Each measured signal's simulated twin at every step of `series`.
-fn simulated(signals: &[Signal], series: &Series, defs: &[SignalDef]) -> Result<Vec<Vec<f64>>, FitError> {
+fn simulated(signals: &[Signal], series: &Series, defs: &[Channel]) -> Result<Vec<Vec<f64>>, FitError> {
     signals
         .iter()
         .map(|signal| {
             let def = defs.iter().find(|d| d.name == signal.name);
-            def.map(|d| d.values(series)).ok_or_else(|| FitError::Signal(signal.name.clone()))
+            def.map(|d| series.values(d)).ok_or_else(|| FitError::Signal(signal.name.clone()))
         })
         .collect()
 }

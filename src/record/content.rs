@@ -8,7 +8,8 @@ use rerun::log::{Chunk, RowId};
 use rerun::{RecordingStreamResult, TextLogLevel, TimeColumn};
 
 use super::writer::{Writer, centreline_points};
-use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, ENERGY_ENTITY, Ending, MODAL_ENTITY, Recorded, force_entity};
+use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, Recorded};
+use crate::channel::{Channel, Plot, Reading};
 use crate::contact::{Impact, ImpactTracker};
 use crate::model::StructureShape;
 use crate::scene::{Frame, SceneLayout};
@@ -71,13 +72,14 @@ fn pairs(run: &Recorded) -> Vec<Pair> {
     match run.ending {
         Ending::Finished(summary) => summary.pairs.iter().map(|p| (p.pair.clone(), p.impacts.clone())).collect(),
         Ending::Diverged { .. } => run
-            .pad_names
+            .series
+            .pair_names
             .iter()
             .zip(&run.series.pad_force_n)
             .map(|(name, forces)| {
                 let mut tracker = ImpactTracker::default();
                 run.series.t_s.iter().zip(forces).for_each(|(t, f)| tracker.push(*t, *f));
-                (super::pair_name(name), tracker.impacts())
+                (name.clone(), tracker.impacts())
             })
             .collect(),
     }
@@ -100,64 +102,33 @@ impl Writer<'_> {
         self.send_columns(entity, times, columns)
     }
 
+    /// Every plotted channel as its producer declares it ([`crate::channel`]): a contact force
+    /// with its impacts' peaks, the traces of a shared entity together, the rest an entity
+    /// each; then the sign-off's.
     fn plots(&mut self, pairs: &[Pair]) -> RecordingStreamResult<()> {
-        let run = self.run;
-        let s = run.series;
-        for (k, axis) in ["axial", "transverse"].iter().enumerate() {
-            self.send(&format!("plots/tip_deflection/{axis}"), s.tip_deflection_m.iter().map(|d| d[k]))?;
-            self.send(&format!("plots/tip_velocity/{axis}"), s.tip_velocity_m_s.iter().map(|d| d[k]))?;
-        }
-        self.send("plots/hub/angle_deg", s.hub_angle_rad.iter().map(|a| a.to_degrees()))?;
-        self.send("plots/hub/rate_deg_s", s.hub_rate_rad_s.iter().map(|a| a.to_degrees()))?;
-        self.send("plots/hub/accel_deg_s2", s.hub_accel_rad_s2.iter().map(|a| a.to_degrees()))?;
-        self.send("plots/drive_torque", s.drive_torque_n_m.iter().copied())?;
-        self.actuator_plots()?;
-        let energies = ["kinetic", "strain", "gravity"].map(String::from);
-        self.send_named(ENERGY_ENTITY, &energies, |k, i| s.energies_j[k][i])?;
-        if s.modal_dofs > 0 {
-            let names: Vec<String> = (1..=s.modal_dofs).map(|i| format!("q{i}")).collect();
-            self.send_named(MODAL_ENTITY, &names, |k, i| s.modal_q[k * s.modal_dofs + i])?;
-        }
-        if !s.string_slip_m.is_empty() {
-            self.send("plots/string_slip", s.string_slip_m.iter().copied())?;
-        }
-        if !s.head_angle_rad.is_empty() {
-            self.send("plots/head/angle_deg", s.head_angle_rad.iter().map(|a| a.to_degrees()))?;
-        }
-        if !s.head_drive_torque_n_m.is_empty() {
-            self.send("plots/head/drive_torque", s.head_drive_torque_n_m.iter().copied())?;
-        }
-        if !s.string_tip_deflection_m.is_empty() {
-            self.send("plots/string/tip_deflection", s.string_tip_deflection_m.iter().copied())?;
-            self.send("plots/string/bending_stress", s.string_stress_pa.iter().copied())?;
-        }
-        for (k, (name, forces)) in run.pad_names.iter().zip(&s.pad_force_n).enumerate() {
-            let impacts = pairs.get(k).map_or(&[][..], |p| &p.1[..]);
-            self.send_force(&force_entity(name), forces, impacts)?;
-        }
-        self.sign_off_plots(super::stress::Shading::of(run).as_ref())?;
-        for sensor in &s.sensors {
-            for (k, channel) in sensor.sensor.kind.channels().iter().enumerate() {
-                let entity = crate::compare::sensor_entity(&sensor.sensor.name, channel.name);
-                self.send(&entity, sensor.values.iter().map(|v| v[k]))?;
+        let s = self.run.series;
+        let plotted: Vec<(&Channel, &Plot)> =
+            s.channels.iter().filter_map(|c| c.plot.as_ref().map(|plot| (c, plot))).collect();
+        let mut rest = &plotted[..];
+        while let Some(&(channel, plot)) = rest.first() {
+            let shared = |(_, p): &&(&Channel, &Plot)| p.entity == plot.entity && p.trace.is_some();
+            let width = if plot.trace.is_some() { rest.iter().take_while(shared).count() } else { 1 };
+            let (group, next) = rest.split_at(width);
+            rest = next;
+            match channel.reading() {
+                Reading::ContactForce(pair) => {
+                    let impacts = pairs.get(pair).map_or(&[][..], |p| &p.1[..]);
+                    self.send_force(&plot.entity, &s.pad_force_n[pair], impacts)?;
+                }
+                _ if plot.trace.is_some() => {
+                    let names: Vec<String> = group.iter().filter_map(|(_, p)| p.trace.clone()).collect();
+                    let value = |k, i: usize| s.value(group[i].0.reading(), k) * group[i].1.scale;
+                    self.send_named(&plot.entity, &names, value)?;
+                }
+                reading => self.send_kept(&plot.entity, |k| s.value(reading, k) * plot.scale)?,
             }
         }
-        Ok(())
-    }
-
-    /// An actuator's plots (nothing under an ideal drive): the reference beside the hub angle,
-    /// the tracking error, the controller's output and a cylinder's force and pressures.
-    fn actuator_plots(&mut self) -> RecordingStreamResult<()> {
-        let (s, outputs) = (self.run.series, &self.run.series.actuator);
-        if outputs.is_empty() {
-            return Ok(());
-        }
-        let reference = s.hub_angle_rad.iter().zip(outputs).map(|(a, o)| (a + o.tracking_error_rad).to_degrees());
-        self.send("plots/hub/reference_deg", reference)?;
-        for channel in &s.actuator_channels {
-            self.send(&channel.entity, outputs.iter().map(|o| channel.of(o) * channel.plot_scale))?;
-        }
-        Ok(())
+        self.sign_off_plots(super::stress::Shading::of(self.run).as_ref())
     }
 
     /// The 3D scene; returns the note on its display scales for the events.

@@ -28,6 +28,10 @@
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time; a diverged run's guard message last |
 //! | `summary` | the run summary (JSON; not for a diverged run) |
 //!
+//! The `plots/…` entities are the run's channels as their producers declare them
+//! ([`crate::channel`]): this module reads the declarations and spells no channel itself, except
+//! the sign-off's ([`stress`]).
+//!
 //! Steps are kept at the record rate in free motion and every step in contact, and each impact's
 //! interpolated peak is inserted at its time in its pad's force series, so no peak is lost and the
 //! plot peaks at the summary's figure ([`crate::run::RunOptions`]).
@@ -46,6 +50,8 @@ mod stream;
 mod stress;
 mod writer;
 
+pub use crate::arm::{ENERGY_ENTITY, MODAL_ENTITY, TIP_DEFLECTION_ENTITY};
+pub use crate::scene::{force_entity, pair_name};
 pub use content::{arrow_scale_n_per_m, magnification};
 pub use stream::Viewer;
 pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY};
@@ -75,32 +81,11 @@ pub enum RecordError {
     Json { path: String, source: serde_json::Error },
 }
 
-/// Entity path of a contact pair's force series, from its series name
-/// ([`crate::model::Model::pair_series_names`]: `<pad>`, `<structure>` or `string-<structure>`).
-pub fn force_entity(series_name: &str) -> String {
-    format!("plots/contact_force/{}", pair_name(series_name))
-}
-
-/// A contact pair's name, `<side>-<obstacle>` as the summary gives it, from its series name
-/// (`<pad>` or `<structure>` for the arm's pairs, `string-<structure>` for the string's).
-pub fn pair_name(series_name: &str) -> String {
-    if series_name.starts_with("string-") { series_name.to_string() } else { format!("arm-{series_name}") }
-}
-
 /// Entity path of the magnified centreline.
 pub const CENTRELINE_ENTITY: &str = "world/centreline";
 
 /// Entity path of the contact points and their force arrows.
 pub const CONTACT_FORCE_ENTITY: &str = "world/contact_force";
-
-/// Entity path of the energies: kinetic, strain and gravity, an instance each.
-pub const ENERGY_ENTITY: &str = "plots/energy";
-
-/// Entity path of the elastic coordinates, an instance each (`q1`, `q2`, …).
-pub const MODAL_ENTITY: &str = "plots/modal";
-
-/// Entity path of the transverse tip deflection series.
-pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection/transverse";
 
 /// How a recorded run ended.
 #[derive(Debug, Clone, Copy)]
@@ -125,10 +110,8 @@ impl Ending<'_> {
 /// A run as a recording shows it.
 #[derive(Debug, Clone, Copy)]
 pub struct Recorded<'a> {
-    /// Its series (with the 3D frames and layout if captured).
+    /// Its series (with the 3D frames and layout if captured), with its channels.
     pub series: &'a Series,
-    /// The pads' names, in the series' order.
-    pub pad_names: &'a [String],
     /// How it ended.
     pub ending: Ending<'a>,
     /// Chunks drawn over the run's own (a measured file's series, `pipearm compare`); empty for a
@@ -137,13 +120,8 @@ pub struct Recorded<'a> {
 }
 
 /// Writes a finished run to `path` (.rrd).
-pub fn write_recording(
-    path: &Path,
-    summary: &RunSummary,
-    series: &Series,
-    pad_names: &[String],
-) -> Result<(), RecordError> {
-    save_recording(path, &Recorded { series, pad_names, ending: Ending::Finished(summary), overlay: &[] })
+pub fn write_recording(path: &Path, summary: &RunSummary, series: &Series) -> Result<(), RecordError> {
+    save_recording(path, &Recorded { series, ending: Ending::Finished(summary), overlay: &[] })
 }
 
 /// Writes `run` to `path` (.rrd), under a temporary name renamed when complete.

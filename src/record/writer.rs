@@ -74,12 +74,6 @@ impl Writer<'_> {
         self.send_columns(entity, times, scalars)?;
         self.log_static(entity, &rerun::SeriesLines::new().with_names(names.iter().map(String::as_str)))
     }
-
-    pub(super) fn send(&mut self, entity: &str, values: impl IntoIterator<Item = f64>) -> RecordingStreamResult<()> {
-        let times = TimeColumn::new_duration_secs("sim_time", self.kept(self.run.series.t_s.iter().copied()));
-        let columns = rerun::Scalars::new(self.kept(values)).columns_of_unit_batches()?;
-        self.send_columns(entity, times, columns)
-    }
 }
 
 /// The magnified centreline of `frame`, world points.

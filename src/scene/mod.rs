@@ -36,7 +36,9 @@ pub use clamp::FrictionGrip;
 pub use geometry::{ArmPiece, ArmView, Side};
 use geometry::{pose_piece, shapes_of_robot, string_segments};
 use pad_faces::PadFaces;
-pub use pair::{ContactPair, Obstacle, PointReading, structure_in_rest_pose};
+pub use pair::{
+    ContactPair, Obstacle, PointReading, force_entity, pair_channels, pair_name, pair_names, structure_in_rest_pose,
+};
 use pipeline::PipelineContacts;
 pub use pipeline::{ManifoldPoint, manifold_between};
 use rapier_pads::RapierPads;

@@ -7,10 +7,40 @@ use rapier3d_f64::prelude::*;
 use super::geometry::{ArmPiece, ArmView, Side};
 use super::pads::PadPlacement;
 use crate::arm::ArmModel;
+use crate::channel::{Channel, Reading};
 use crate::contact::ForceLaw;
 use crate::drive::DriveState;
 use crate::model::{Dampener, Model, Structure, StructureShape};
 use nalgebra::DVector;
+
+/// A contact pair's name, `<side>-<obstacle>` as the summary gives it, from its series name
+/// ([`Model::pair_series_names`]: `<pad>` or `<structure>` for the arm's pairs,
+/// `string-<structure>` for the string's).
+pub fn pair_name(series_name: &str) -> String {
+    if series_name.starts_with("string-") { series_name.to_string() } else { format!("arm-{series_name}") }
+}
+
+/// Entity path of a contact pair's force plot, from its series name.
+pub fn force_entity(series_name: &str) -> String {
+    format!("plots/contact_force/{}", pair_name(series_name))
+}
+
+/// Each contact pair's force channel ([`crate::channel`]), in the scene's order:
+/// `contact_force.<series name>`, N, plotted at [`force_entity`]; a pad's is measurable.
+pub fn pair_channels(model: &Model) -> Vec<Channel> {
+    let pads = model.dampeners.len();
+    let channel = |(k, name): (usize, String)| {
+        let channel = Channel::new(format!("contact_force.{name}"), "N", Reading::ContactForce(k))
+            .plotted(force_entity(&name), 1.0);
+        if k < pads { channel.measurable() } else { channel }
+    };
+    model.pair_series_names().into_iter().enumerate().map(channel).collect()
+}
+
+/// Each contact pair's name ([`pair_name`]), in the scene's order.
+pub fn pair_names(model: &Model) -> Vec<String> {
+    model.pair_series_names().iter().map(|name| pair_name(name)).collect()
+}
 
 /// What a pair's body strikes.
 #[derive(Debug, Clone)]

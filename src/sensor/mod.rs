@@ -109,9 +109,26 @@ pub struct SensorSpec {
     pub station_m: Option<f64>,
 }
 
-/// Names a sensor may not take: the run's own signals ([`crate::compare`] reads columns named
-/// after both).
-pub const RESERVED_NAMES: [&str; 6] = ["t", "hub", "tip_deflection", "tip_velocity", "drive_torque", "contact_force"];
+/// Names a sensor may not take: the first part of the run's other channels' names
+/// ([`crate::channel`]) and of the tables' sign-off columns, which a sensor's `<name>.<channel>`
+/// would otherwise spell again.
+pub const RESERVED_NAMES: [&str; 15] = [
+    "t",
+    "hub",
+    "tip_deflection",
+    "tip_velocity",
+    "drive_torque",
+    "contact_force",
+    "actuator",
+    "head",
+    "string",
+    "energy",
+    "modal",
+    "stress",
+    "pivot",
+    "cylinder_pin",
+    "grip",
+];
 
 /// A sensor declaration that cannot be resolved: the key (under `sensors[i].`) and what is wrong.
 pub type SpecError = (&'static str, String);
@@ -163,6 +180,25 @@ impl SensorSpec {
         };
         Ok(Sensor { name: self.name.clone(), kind })
     }
+}
+/// Entity path of a sensor channel's plot.
+pub fn sensor_entity(sensor: &str, channel: &str) -> String {
+    format!("plots/sensors/{sensor}/{channel}")
+}
+
+/// Each sensor's two channels ([`crate::channel`]), in the model's order: `<sensor>.<channel>`,
+/// plotted at [`sensor_entity`], measurable.
+pub fn channels(sensors: &[Sensor]) -> Vec<crate::channel::Channel> {
+    use crate::channel::{Channel, Reading};
+    let mut out = Vec::new();
+    for (index, sensor) in sensors.iter().enumerate() {
+        for (channel, c) in sensor.kind.channels().into_iter().enumerate() {
+            let reading = Reading::Sensor { index, channel };
+            let named = Channel::new(format!("{}.{}", sensor.name, c.name), c.unit, reading);
+            out.push(named.plotted(sensor_entity(&sensor.name, c.name), 1.0).measurable());
+        }
+    }
+    out
 }
 
 /// The arm's section at `station_m`: the segment that holds it (at a joint between segments,

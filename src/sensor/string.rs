@@ -23,7 +23,27 @@ use serde::Serialize;
 
 use super::probe::ArmState;
 use crate::arm::{ArmModel, StationRows};
+use crate::channel::{Channel, Reading};
 use crate::model::HeldString;
+
+/// A held string's channels ([`crate::channel`]), plotted only: its far end's deflection
+/// normal to the arm (m) and the largest bending stress at its hands (Pa); held by friction,
+/// in the tables too, its slip along the arm (plotted) and how deep the jaws have sunk (m).
+pub fn channels(held: &HeldString) -> Vec<Channel> {
+    let mut out = vec![
+        Channel::new("string.tip_deflection", "m", Reading::StringTipDeflection)
+            .plotted("plots/string/tip_deflection", 1.0)
+            .untabled(),
+        Channel::new("string.bending_stress", "Pa", Reading::StringBendingStress)
+            .plotted("plots/string/bending_stress", 1.0)
+            .untabled(),
+    ];
+    if held.friction_clamp().is_some() {
+        out.push(Channel::new("string_slip", "m", Reading::StringSlip).plotted("plots/string_slip", 1.0));
+        out.push(Channel::new("jaw_sinking", "m", Reading::JawSinking));
+    }
+    out
+}
 
 /// A held string made ready to read: its rows computed once.
 #[derive(Debug, Clone)]
