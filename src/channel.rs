@@ -11,8 +11,8 @@
 //! ([`crate::sensor::channels`]), then the arm's energies and elastic coordinates
 //! ([`crate::arm::state_channels`]); [`crate::run::channels`] lists them for a model and
 //! [`crate::run::Series::values`] reads them. The sign-off's columns (σ where the run's peak fell,
-//! pin and grip loads) depend on where that peak fell; the tables add them last
-//! (`crate::export`).
+//! pin and grip loads) are declared by the series that holds them once the run has read every
+//! step, where its peak fell (`crate::stress::StressSeries::channels`).
 
 /// One channel of a run.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,6 +81,16 @@ pub enum Reading {
     Energy(usize),
     /// Elastic coordinate i (from 0), m·kg^½.
     Modal(usize),
+    /// σ at the sign-off's station `station`, its upper fibre or its lower, Pa.
+    Stress { station: usize, upper: bool },
+    /// The pivot's force on the arm, world component k (x, y), N.
+    PivotForce(usize),
+    /// `sign` times the sign-off's value at offset `at` of a step (a cylinder pin's force, world,
+    /// N; a string's load on a hand, arm frame, N or N·m).
+    SignOffValue { at: usize, sign: f64 },
+    /// The magnitude of the sign-off's force at offsets `at`, `at + 1` of a step (a pin's or a
+    /// hand's), N.
+    PinForce { at: usize },
 }
 
 /// Which of an actuator's outputs a channel reads.

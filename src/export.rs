@@ -13,7 +13,7 @@
 //! reports those peaks.)
 //!
 //! Columns, in this order, SI units in brackets after the name: the time, then each channel its
-//! producer declares for the tables, in their order ([`crate::channel`]), then the sign-off's:
+//! producer declares for the tables, in their order ([`crate::channel`]; the sign-off's last):
 //!
 //! | column | what |
 //! |---|---|
@@ -121,8 +121,8 @@ pub fn table_path(folder: &Path, name: &str, rate: Rate, extension: &str) -> Pat
     folder.join(format!("{name}.{}.{extension}", rate.tag()))
 }
 
-/// The columns of a table of `series` at `rate`: the time, every channel its producers declare
-/// for the tables ([`crate::channel`]), in their order, then the sign-off's.
+/// The columns of a table of `series` at `rate`: the time, then every channel its producers
+/// declare for the tables ([`crate::channel`]), in their order (the sign-off's last).
 pub fn columns(series: &Series, rate: Rate) -> Vec<Column> {
     let rows = |values: &mut dyn Iterator<Item = f64>| -> Vec<f64> {
         match rate {
@@ -139,51 +139,7 @@ pub fn columns(series: &Series, rate: Rate) -> Vec<Column> {
     for channel in s.channels.iter().filter(|c| c.tabled) {
         push(channel.header(), &mut (0..s.t_s.len()).map(|k| s.value(channel.reading(), k)));
     }
-    sign_off_columns(s, &mut push);
     out
-}
-
-/// The sign-off's columns (`docs/sign-off.md`), when the run read them: σ at the section and fibre
-/// of the run's peak stress, the pivot's and the cylinder pin's force on the arm (world), each
-/// hand's grip on the string (force along and across the arm, moment).
-fn sign_off_columns(s: &Series, push: &mut dyn FnMut(String, &mut dyn Iterator<Item = f64>)) {
-    let stress = &s.stress;
-    // A run the guard stopped may leave its last readings unevaluated: no columns then.
-    if stress.width == 0 || stress.steps() != s.t_s.len() {
-        return;
-    }
-    let steps = stress.steps();
-    let value = |k: usize, at: usize| f64::from(stress.values[k * stress.width + at]);
-    let worst = stress
-        .extremes()
-        .iter()
-        .enumerate()
-        .flat_map(|(i, e)| crate::stress::Fibre::BOTH.into_iter().zip(e).map(move |(f, e)| (i, f, e.peak_abs())))
-        .max_by(|a, b| a.2.total_cmp(&b.2));
-    if let Some((i, fibre, _)) = worst {
-        push("stress.worst[Pa]".into(), &mut (0..steps).map(|k| stress.stress_pa(i, fibre, k)));
-    }
-    let world = |k: usize, at: usize| {
-        let (sn, cs) = s.hub_angle_rad[k].sin_cos();
-        let (x, y) = (value(k, at), value(k, at + 1));
-        [cs * x - sn * y, sn * x + cs * y]
-    };
-    for (a, axis) in ["x", "y"].into_iter().enumerate() {
-        push(format!("pivot.force.{axis}[N]"), &mut (0..steps).map(|k| world(k, stress.pivot_index)[a]));
-    }
-    let count = stress.cylinder_indices.len();
-    for (i, at) in stress.cylinder_indices.iter().enumerate() {
-        let number = crate::actuator::cylinder_number(i, count).map_or(String::new(), |n| format!(".{n}"));
-        for (a, axis) in ["x", "y"].into_iter().enumerate() {
-            push(format!("cylinder_pin{number}.force.{axis}[N]"), &mut (0..steps).map(|k| value(k, at + a)));
-        }
-    }
-    for (hand, at) in &stress.hands {
-        // The hand's grip on the string: minus the string's load on the hand.
-        for (k, name) in ["force.axial[N]", "force.transverse[N]", "moment[N*m]"].into_iter().enumerate() {
-            push(format!("grip.{hand}.{name}"), &mut (0..steps).map(|step| -value(step, at + k)));
-        }
-    }
 }
 
 /// Writes the steps and decimated tables of `series` (run `name`) as CSV and Parquet into

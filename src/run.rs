@@ -329,9 +329,8 @@ pub fn run_reusing(
     options: &RunOptions,
     compiler: &Compiler,
 ) -> Result<(RunSummary, Series), SceneError> {
-    let mut series = Series::default();
-    let summary = simulate(model, options, &mut series, compiler)?;
-    Ok((summary, series))
+    let (summary, series) = run_partial(model, options, compiler);
+    Ok((summary?, series))
 }
 
 /// Runs a model with `options` and returns its series whether it finished or not: up to the
@@ -344,6 +343,12 @@ pub fn run_partial(
 ) -> (Result<RunSummary, SceneError>, Series) {
     let mut series = Series::default();
     let summary = simulate(model, options, &mut series, compiler);
+    // The sign-off's channels, declared once every step is read (where the peak fell); a run the
+    // guard stopped may leave its last readings unevaluated, and then has none.
+    if series.stress.steps() == series.t_s.len() {
+        let sign_off = series.stress.channels();
+        series.channels.extend(sign_off);
+    }
     (summary, series)
 }
 

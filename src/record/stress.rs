@@ -19,9 +19,7 @@ pub const YIELD_ENTITY: &str = "plots/stress/yield";
 /// The share of the yield line the worst station's peak |σ| reaches before the line is drawn.
 pub const YIELD_DRAWN_FROM: f64 = 0.5;
 
-/// Entity path of the pivot's force on the arm, N (the cylinder's is `plots/pins/cylinder`, a
-/// hand's grip `plots/pins/hands/<hand>`).
-pub const PIVOT_ENTITY: &str = "plots/pins/pivot";
+pub use crate::stress::PIVOT_ENTITY;
 
 /// Entity path of the peak's marker on the centreline.
 pub const PEAK_ENTITY: &str = "world/stress_peak";
@@ -248,7 +246,8 @@ impl Writer<'_> {
         self.log_static(LEGEND_ENTITY, &legend)
     }
 
-    /// The stress at the worst station against its yield line, and the pin and grip loads.
+    /// The stress at the worst station against its yield line (the pin and grip loads are
+    /// channels of the sign-off's, [`crate::stress::StressSeries::channels`]).
     pub(super) fn sign_off_plots(&mut self, shading: Option<&Shading>) -> RecordingStreamResult<()> {
         let series = &self.run.series.stress;
         let steps = series.steps();
@@ -288,23 +287,6 @@ impl Writer<'_> {
                     self.send_columns(&entity, times, columns)?;
                 }
             }
-        }
-        let magnitude = |at: usize| {
-            move |k: usize| {
-                let v = &series.values[k * series.width + at..];
-                let (x, y) = (f64::from(v[0]), f64::from(v[1]));
-                (x * x + y * y).sqrt()
-            }
-        };
-        self.send_kept(PIVOT_ENTITY, magnitude(series.pivot_index))?;
-        let count = series.cylinder_indices.len();
-        for (k, at) in series.cylinder_indices.iter().enumerate() {
-            let entity = crate::actuator::cylinder_number(k, count)
-                .map_or("plots/pins/cylinder".to_string(), |n| format!("plots/pins/cylinder_{n}"));
-            self.send_kept(&entity, magnitude(*at))?;
-        }
-        for (hand, at) in &series.hands {
-            self.send_kept(&format!("plots/pins/hands/{hand}"), magnitude(*at))?;
         }
         Ok(())
     }

@@ -53,7 +53,23 @@ impl Series {
             Reading::Sensor { index, channel } => self.sensors[index].values[k][channel],
             Reading::Energy(i) => self.energies_j[k][i],
             Reading::Modal(i) => self.modal_q[k * self.modal_dofs + i],
+            Reading::Stress { station, upper } => {
+                let fibre = if upper { crate::stress::Fibre::Upper } else { crate::stress::Fibre::Lower };
+                self.stress.stress_pa(station, fibre, k)
+            }
+            Reading::PivotForce(axis) => {
+                let (sn, cs) = self.hub_angle_rad[k].sin_cos();
+                let [x, y] = [0, 1].map(|a| self.sign_off_value(k, self.stress.pivot_index + a));
+                [cs * x - sn * y, sn * x + cs * y][axis]
+            }
+            Reading::SignOffValue { at, sign } => sign * self.sign_off_value(k, at),
+            Reading::PinForce { at } => self.sign_off_value(k, at).hypot(self.sign_off_value(k, at + 1)),
         }
+    }
+
+    /// The sign-off's value at offset `at` of step `k`.
+    fn sign_off_value(&self, k: usize, at: usize) -> f64 {
+        f64::from(self.stress.values[k * self.stress.width + at])
     }
 
     /// `channel`'s values at every step, SI.

@@ -8,6 +8,7 @@
 //! - [`chart`]: the stress envelope along the arm, as an SVG.
 
 mod beside;
+mod channels;
 pub mod chart;
 pub mod fibres;
 pub mod forms;
@@ -26,6 +27,7 @@ use crate::scene::{Scene, Side as PairSide};
 use crate::sensor::probe::ArmState;
 
 pub use crate::robot::{SegmentChecks, YieldSource, YieldStrength};
+pub use channels::PIVOT_ENTITY;
 pub use fibres::{Fibre, Fibres};
 pub use recovery::{SectionRecovery, Station};
 pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
