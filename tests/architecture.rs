@@ -212,3 +212,31 @@ fn the_dispatch_check_sees_through_formatting_but_not_into_comments() {
     let code = code_of("if piece.name == \"string\" { } // x.as_any()\n");
     assert!(code.contains(".name == \"\"") && !code.contains("as_any"));
 }
+
+/// A run's channels are declared once, by their producers (`pipearm::channel`): a plot's entity
+/// path is spelled in their declarations, and otherwise only where the recording arranges its
+/// views (`record/layout.rs`) and draws the sign-off's own figures (`record/stress.rs`) — not
+/// by the recording's writer, the tables, `compare` or `fit`, which read the declarations.
+#[test]
+fn plot_entities_are_spelled_only_where_channels_are_declared() {
+    let declaring = [
+        "actuator/channels.rs",
+        "arm/channels.rs",
+        "scene/pair.rs",
+        "sensor/mod.rs",
+        "sensor/string.rs",
+        "stress/channels.rs",
+        "record/layout.rs",
+        "record/stress.rs",
+    ];
+    let root = src();
+    let mut spelling = Vec::new();
+    for file in rust_files(&root) {
+        if std::fs::read_to_string(&file).unwrap().contains("\"plots/") {
+            spelling.push(file.strip_prefix(&root).unwrap().to_string_lossy().into_owned());
+        }
+    }
+    assert!(spelling.len() >= 6, "{spelling:?}: the reader lost the declarations");
+    let stray: Vec<&String> = spelling.iter().filter(|f| !declaring.contains(&f.as_str())).collect();
+    assert!(stray.is_empty(), "plot entities spelled outside the channels' declarations: {stray:?}");
+}
