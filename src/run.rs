@@ -18,9 +18,11 @@ use crate::sensor::{Sensor, SensorProbe};
 use crate::stress::StressProbe;
 
 mod channels;
+mod compiled;
 mod readings;
 
 pub use channels::{channels, measurable_channels};
+pub use compiled::CompiledModel;
 pub use readings::HeadSummary;
 use readings::{read_head, read_sensors, read_string};
 
@@ -341,8 +343,16 @@ pub fn run_partial(
     options: &RunOptions,
     compiler: &Compiler,
 ) -> (Result<RunSummary, SceneError>, Series) {
+    match CompiledModel::new(model, options.fidelity, compiler) {
+        Ok(compiled) => run_compiled(&compiled, options),
+        Err(error) => (Err(error.into()), Series::default()),
+    }
+}
+
+/// Runs `compiled` with `options` (its fidelity is the compiled one's), as [`run_partial`] does.
+pub fn run_compiled(compiled: &CompiledModel, options: &RunOptions) -> (Result<RunSummary, SceneError>, Series) {
     let mut series = Series::default();
-    let summary = simulate(model, options, &mut series, compiler);
+    let summary = simulate(compiled, options, &mut series);
     // The sign-off's channels, declared once every step is read (where the peak fell); a run the
     // guard stopped may leave its last readings unevaluated, and then has none.
     if series.stress.steps() == series.t_s.len() {
@@ -353,27 +363,21 @@ pub fn run_partial(
 }
 
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
-fn simulate(
-    model: &Model,
-    options: &RunOptions,
-    series: &mut Series,
-    compiler: &Compiler,
-) -> Result<RunSummary, SceneError> {
-    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, fastest_rad_s } =
-        crate::select::compile_arm(model, options.fidelity, compiler)?;
-    let fidelity = choice.fidelity;
-    let mut scene = Scene::with_arm(model, arm)?;
+fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
+    let model = compiled.model;
+    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, fastest_rad_s } = &compiled.arm;
+    let fastest_rad_s = *fastest_rad_s;
+    let mut scene = Scene::with_arm(model, arm.clone())?;
     let h = model.time.step_s;
     let control = free_step_control(model);
     let end = model.duration_s();
     let steps = ((end / h) - 1e-9).ceil().max(0.0) as usize + 1;
     // Frames at the frame rate, and a quarter more for the steps in contact (all drawn).
     let frames = if options.capture_frames { (1.25 * end * options.frame_rate_hz) as usize + 1 } else { 0 };
-    let modal_dofs = if fidelity == Fidelity::Fe { 0 } else { scene.arm.arm.elastic_dofs() };
     let pads = scene.pairs().count();
-    *series = Series::with_capacity(steps, pads, modal_dofs, frames, &model.sensors);
-    series.channels = channels(model, modal_dofs);
-    series.pair_names = crate::scene::pair_names(model);
+    *series = Series::with_capacity(steps, pads, compiled.modal_dofs(), frames, &model.sensors);
+    series.channels = compiled.channels.clone();
+    series.pair_names = compiled.pair_names.clone();
     let probes: Vec<SensorProbe> = model.sensors.iter().map(|s| SensorProbe::new(s, &scene.arm.arm)).collect();
     let mut stress = options.sign_off.then(|| StressProbe::for_run(model, &scene, steps, &mut series.stress));
     let mut trackers = vec![ImpactTracker::default(); pads];
@@ -435,7 +439,7 @@ fn simulate(
     let summarized = stepped.and_then(|steps| {
         let wall_time_s = started.elapsed().as_secs_f64();
         let mut summary = summarize(model, &scene, series, &trackers, fastest_rad_s, steps, wall_time_s)?;
-        (summary.model_reason, summary.model_expected_error) = (choice.reason, choice.expected);
+        (summary.model_reason, summary.model_expected_error) = (choice.reason.clone(), choice.expected.clone());
         if let Some(choice) = string_choice {
             if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
                 series.string_peak_stress = peaks.peaks_over(&series.modal_q, series.modal_dofs).unwrap_or_default();
@@ -447,7 +451,7 @@ fn simulate(
                 peak_stress: &series.string_peak_stress,
             };
             summary.string =
-                Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice, &readings)?);
+                Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice.clone(), &readings)?);
         }
         Ok(summary)
     });

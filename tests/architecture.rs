@@ -197,11 +197,20 @@ fn nothing_dispatches_on_a_name_string_or_downcasts() {
 
 /// The run takes its arm compiled (`select::compile_arm` through a `compile::Compiler`, which
 /// keeps what a sweep's runs share): the step loop's module builds no beam and solves no
-/// eigenproblem of its own, before the loop or after it.
+/// eigenproblem of its own, before the loop or after it, and takes its arm from the compiled
+/// model (`run::CompiledModel`), not by compiling one.
 #[test]
 fn the_run_takes_its_arm_compiled() {
     let code = code_of(&std::fs::read_to_string(src().join("run.rs")).unwrap());
-    let derived = ["BeamModel::new", ".modes()", "with_modes(", "symmetric_eigen", "ArmModel::new", "linear_poles"];
+    let derived = [
+        "BeamModel::new",
+        ".modes()",
+        "with_modes(",
+        "symmetric_eigen",
+        "ArmModel::new",
+        "linear_poles",
+        "compile_arm",
+    ];
     for pattern in derived {
         assert!(!code.contains(pattern), "src/run.rs: `{pattern}`");
     }

@@ -65,3 +65,24 @@ fn a_scenarios_run_takes_the_arm_its_checks_compiled() {
         assert_eq!(numbers(&shared), numbers(&own), "{name}");
     }
 }
+
+/// Compiled once, stepped twice: a `CompiledModel` is not changed by the runs it starts, each of
+/// which steps a fresh scene into a fresh series, equal to the bit to a run that compiles its own.
+#[test]
+fn a_compiled_model_steps_the_same_run_every_time() {
+    use pipearm::run::{CompiledModel, run_compiled};
+    let model = default_model();
+    let compiler = Compiler::new();
+    let compiled = CompiledModel::new(&model, None, &compiler).unwrap();
+    let options = RunOptions::default();
+    let (first, first_series) = run_compiled(&compiled, &options);
+    let (second, second_series) = run_compiled(&compiled, &options);
+    let (alone, alone_series) = run_with(&model, &options).unwrap();
+    let (first, second) = (first.unwrap(), second.unwrap());
+    assert_eq!(numbers(&first), numbers(&second));
+    assert_eq!(numbers(&first), numbers(&alone));
+    assert!(first_series == second_series && first_series == alone_series, "the series differ");
+    // The default's flexible string: two beams (auto's choice, then the run's) and one arm,
+    // for both runs.
+    assert_eq!(compiler.compilations(), Compilations { beams: 2, arms: 1 }, "compiled once");
+}

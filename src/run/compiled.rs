@@ -1,0 +1,41 @@
+//! A model compiled for its runs: everything a run derives from the model before its first step,
+//! derived once and immutable — the arm reduced to its fidelity, the string's and the arm's
+//! fidelity choices with their reasons, the fastest motion the step must resolve, the run's
+//! channels and its contact pairs' names. A run ([`super::run_compiled`]) steps a fresh scene
+//! from it and fills a fresh series, as MuJoCo's `mjData` steps beside its `mjModel`.
+
+use crate::arm::{ArmError, Fidelity};
+use crate::channel::Channel;
+use crate::compile::Compiler;
+use crate::model::Model;
+use crate::select::CompiledArm;
+
+/// A model compiled for its runs (module doc).
+pub struct CompiledModel<'a> {
+    /// The model, as the scenario file gives it, checked.
+    pub model: &'a Model,
+    /// Its arm at the chosen fidelity, with the choices and the fastest motion.
+    pub arm: CompiledArm,
+    /// The run's channels as their producers declare them, but the sign-off's (those follow
+    /// where the run's peak falls): [`super::channels`].
+    pub channels: Vec<Channel>,
+    /// Each contact pair's name, in the scene's order ([`crate::scene::pair_names`]).
+    pub pair_names: Vec<String>,
+}
+
+impl<'a> CompiledModel<'a> {
+    /// Compiles `model` at `fidelity` (`auto`'s choice if `None`), taking from `compiler` what it
+    /// kept from earlier compilations that it shares (the beam, its modes, the reduced arm).
+    pub fn new(model: &'a Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<Self, ArmError> {
+        let arm = crate::select::compile_arm(model, fidelity, compiler)?;
+        let mut compiled =
+            CompiledModel { model, arm, channels: Vec::new(), pair_names: crate::scene::pair_names(model) };
+        compiled.channels = super::channels(model, compiled.modal_dofs());
+        Ok(compiled)
+    }
+
+    /// The elastic coordinates a run records per step (none for fe).
+    pub fn modal_dofs(&self) -> usize {
+        if self.arm.arm.fidelity == Fidelity::Fe { 0 } else { self.arm.model.elastic_dofs() }
+    }
+}
