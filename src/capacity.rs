@@ -165,10 +165,11 @@ fn first_moment_kg_m(spec: &BeamSpec) -> f64 {
     moment + spec.masses.iter().map(|m| m.mass_kg * m.position_m).sum::<f64>()
 }
 
-/// The payload's mass (kg) and the arm station of its centre of mass (m).
+/// The payload's mass (kg) and the arm station of its centre of mass (m); none for a string on
+/// the tilting head, whose mass the machine's head carries already.
 pub fn payload_mass_and_station(payload: &Payload) -> (f64, f64) {
     match payload {
-        Payload::None => (0.0, 0.0),
+        Payload::None | Payload::StringOnHead(_) => (0.0, 0.0),
         Payload::Lumped(m) => (m.mass_kg, m.position_m),
         Payload::String(held) => (held.pipe.mass_kg(), held.mass_centre_m()),
     }

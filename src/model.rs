@@ -179,6 +179,10 @@ pub enum Payload {
     Lumped(ConcentratedMass),
     /// A pipe string held by the gripper.
     String(HeldString),
+    /// A pipe string held by hands on the tilting head: rigid with it, its mass and inertia the
+    /// head's ([`crate::robot::TiltingHead::carrying`]), so the arm carries it at the hinge and
+    /// nothing reads it as a string of its own (no string outputs, no string contact).
+    StringOnHead(HeldString),
 }
 
 impl Payload {
@@ -188,6 +192,7 @@ impl Payload {
             Payload::None => Vec::new(),
             Payload::Lumped(mass) => vec![mass.clone()],
             Payload::String(held) => vec![held.lumped_mass()],
+            Payload::StringOnHead(_) => Vec::new(),
         }
     }
 
@@ -196,7 +201,7 @@ impl Payload {
         match self {
             Payload::None => 0.0,
             Payload::Lumped(mass) => mass.mass_kg,
-            Payload::String(held) => held.pipe.mass_kg(),
+            Payload::String(held) | Payload::StringOnHead(held) => held.pipe.mass_kg(),
         }
     }
 

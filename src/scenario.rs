@@ -11,6 +11,7 @@ mod capacity;
 mod checks;
 mod clamp;
 mod drive;
+mod grips;
 mod loop_advice;
 mod sensors;
 pub mod spelling;
@@ -27,7 +28,7 @@ use crate::beam::{BeamModel, ConcentratedMass};
 use crate::compile::Compiler;
 use crate::integrate::IntegratorKind;
 use crate::model::{
-    Clamp, ContactOptions, Drive, FrictionClamp, Grip, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
+    Clamp, ContactOptions, Drive, FrictionClamp, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
 use crate::sensor::{SensorKind, SensorSpec};
@@ -357,6 +358,10 @@ impl Scenario {
         check.head(spec.head.as_ref(), &mut robot)?;
         let actuator = check.actuator(&spec.actuator, &robot)?;
         let payload = check.payload(&spec.payload, &robot)?;
+        if let Payload::StringOnHead(held) = &payload {
+            check.head_without_structures(&spec.structures)?;
+            robot.head = robot.head.take().map(|head| head.carrying(&held.lumped_mass()));
+        }
         let dampeners: Result<Vec<_>, _> =
             spec.dampeners.iter().enumerate().map(|(i, d)| check.dampener(i, d, &robot, &spec)).collect();
         let sensors = check.sensors(&spec.sensors, &robot, &payload)?;
@@ -548,7 +553,7 @@ impl Check<'_> {
                         self.invalid("payload.damping_ratio", format!("{damping_ratio} is outside 0 <= ratio < 2"))
                     );
                 }
-                Payload::String(HeldString {
+                let held = HeldString {
                     grips: self.grips(at.as_deref(), grips.as_deref(), &pipe, robot)?,
                     pipe,
                     clamp: *clamp,
@@ -558,7 +563,8 @@ impl Check<'_> {
                         model.fidelity()
                     },
                     damping_ratio,
-                })
+                };
+                if self.string_on_head(&held, robot)? { Payload::StringOnHead(held) } else { Payload::String(held) }
             }
             PayloadSpec::Block { block } => {
                 let mass_kg = *LAB_BLOCKS_KG
@@ -574,125 +580,5 @@ impl Check<'_> {
                 })
             }
         })
-    }
-
-    /// The grips on a string: `at` (one hand at the string's middle) or `grips`, each hand a link
-    /// on the arm, no hand twice or on another's station, each grip on the string, and the grips
-    /// as far apart along the string as their hands are along the arm.
-    fn grips(
-        &self,
-        at: Option<&str>,
-        grips: Option<&[GripSpec]>,
-        pipe: &PipeString,
-        robot: &Robot,
-    ) -> Result<Vec<Grip>, ScenarioError> {
-        let length = pipe.length_m;
-        let specs: Vec<(String, GripSpec)> = match (at, grips) {
-            (Some(_), Some(_)) => {
-                return Err(self.invalid("payload.at", "give either `at` (one hand at the string's middle) or `grips`"));
-            }
-            (_, Some([])) => return Err(self.invalid("payload.grips", "empty: allowed one or more { hand, at_m }")),
-            (_, Some(list)) => {
-                list.iter().enumerate().map(|(i, g)| (format!("payload.grips[{i}]"), g.clone())).collect()
-            }
-            (at, None) => {
-                let hand = at.unwrap_or(DEFAULT_HAND).to_string();
-                vec![("payload".into(), GripSpec { hand, at_m: Some(0.5 * length) })]
-            }
-        };
-        let key_of = |prefix: &str, k: &str| {
-            if prefix == "payload" { "payload.at".to_string() } else { format!("{prefix}.{k}") }
-        };
-        let arm_length = robot.arm.length_m();
-        let mut resolved: Vec<(String, Grip)> = Vec::with_capacity(specs.len());
-        for (prefix, spec) in &specs {
-            let body = robot.body(&spec.hand).ok_or_else(|| {
-                let names: Vec<_> = robot.carried.iter().map(|b| b.name.as_str()).collect();
-                self.invalid(
-                    &key_of(prefix, "hand"),
-                    format!("`{}` is not a link on the arm: allowed {}", spec.hand, names.join(", ")),
-                )
-            })?;
-            if let Some(head) = robot.head.as_ref().filter(|_| body.tilts) {
-                return Err(self.invalid(
-                    &key_of(prefix, "hand"),
-                    format!(
-                        "`{}` turns on the tilting head (joint `{}`): a string held on a tilting head is not \
-                         modelled yet; lock its hinge (kind=\"locked\") or grip with a link fixed to the arm",
-                        spec.hand, head.joint
-                    ),
-                ));
-            }
-            if !(body.station_m > 0.0 && body.station_m <= arm_length) {
-                return Err(self.invalid(
-                    &key_of(prefix, "hand"),
-                    format!(
-                        "`{}` sits at arm station {} m, beyond the arm: allowed 0 < station <= {arm_length}",
-                        spec.hand, body.station_m
-                    ),
-                ));
-            }
-            if let Some((other, _)) =
-                resolved.iter().find(|(_, g)| g.hand == spec.hand || (g.station_m - body.station_m).abs() < 0.05)
-            {
-                return Err(self.invalid(
-                    &key_of(prefix, "hand"),
-                    format!(
-                        "`{}` overlaps the hand of {other}: hands must be different links at least 0.05 m apart",
-                        spec.hand
-                    ),
-                ));
-            }
-            if let Some(at_m) = spec.at_m
-                && !(at_m.is_finite() && (0.0..=length).contains(&at_m))
-            {
-                return Err(self.invalid(
-                    &key_of(prefix, "at_m"),
-                    format!("{at_m} is outside 0 ..= {length} (the string's length, m)"),
-                ));
-            }
-            resolved.push((
-                prefix.clone(),
-                Grip { hand: spec.hand.clone(), station_m: body.station_m, at_m: spec.at_m.unwrap_or(f64::NAN) },
-            ));
-        }
-        let given = specs.iter().filter(|(_, g)| g.at_m.is_some()).count();
-        if given != 0 && given != specs.len() {
-            return Err(self.invalid(
-                "payload.grips",
-                "give at_m for every grip or for none (none: the string centred between its hands)",
-            ));
-        }
-        resolved.sort_by(|a, b| a.1.station_m.total_cmp(&b.1.station_m));
-        if given == 0 {
-            let mid = 0.5 * (resolved[0].1.station_m + resolved[resolved.len() - 1].1.station_m);
-            for (_, grip) in &mut resolved {
-                grip.at_m = 0.5 * length + grip.station_m - mid;
-            }
-            if let Some((prefix, grip)) = resolved.iter().find(|(_, g)| !(0.0..=length).contains(&g.at_m)) {
-                return Err(self.invalid(
-                    &key_of(prefix, "hand"),
-                    format!(
-                        "`{}` is {:.3} m from the string's centre, beyond the string ({length} m long)",
-                        grip.hand,
-                        grip.at_m - 0.5 * length
-                    ),
-                ));
-            }
-        }
-        let (_, first) = &resolved[0];
-        for (prefix, grip) in &resolved[1..] {
-            let (along_arm, along_string) = (grip.station_m - first.station_m, grip.at_m - first.at_m);
-            if (along_arm - along_string).abs() > 1e-3 {
-                return Err(self.invalid(
-                    &key_of(prefix, "at_m"),
-                    format!(
-                        "{} grips {along_string:.3} m along the string from {}, but the hands are {along_arm:.3} m apart on the arm: allowed at_m = {:.3}",
-                        grip.hand, first.hand, first.at_m + along_arm
-                    ),
-                ));
-            }
-        }
-        Ok(resolved.into_iter().map(|(_, g)| g).collect())
     }
 }

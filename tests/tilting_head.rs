@@ -272,18 +272,79 @@ fn a_bad_hinge_is_named() {
     assert!(error.contains("joint[wrist].axis") && error.contains("normal to the lift"), "{error}");
 }
 
-/// A string in a hand on the tilting head is refused before the run with the scenario's key.
-#[test]
-fn a_string_in_a_hand_on_the_head_is_refused_by_key() {
+/// `scenarios/tilting_head.toml` with its payload `payload` and, appended, `extra`, loaded.
+fn head_scenario(tag: &str, payload: &str, extra: &str) -> Result<pipearm::model::Model, String> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("scenarios/tilting_head.toml")).unwrap();
-    let grips = "kind = \"string\"\nsize = \"2-7/8\"\ngrips = [{ hand = \"hand\", at_m = 4.75 }, { hand = \"gripper\", at_m = 7.75 }]";
-    let path = root.join(format!("scenarios/.head-grip-{}.toml", std::process::id()));
-    std::fs::write(&path, text.replace("kind = \"none\"", grips)).unwrap();
-    let error = pipearm::scenario::Scenario::load(&path).err().map(|e| e.to_string());
+    let path = root.join(format!("scenarios/.head-{tag}-{}.toml", std::process::id()));
+    std::fs::write(&path, text.replace("kind = \"none\"", payload) + extra).unwrap();
+    let loaded = pipearm::scenario::Scenario::load(&path).map(|s| s.model).map_err(|e| e.to_string());
     std::fs::remove_file(&path).ok();
-    let error = error.expect("the scenario loaded");
-    assert!(error.contains("payload.grips[1].hand") && error.contains("tilting head"), "{error}");
+    loaded
+}
+
+/// A string in the gripper on the tilting head is rigid with the head: on a rigid arm held still,
+/// without gravity, the head swings on its spring at √(k / J), J the head's inertia about its
+/// hinge (the URDF's links) plus the string's about its own centre (the pipe's, from the
+/// catalogue) and its mass times the square of its centre's distance from the hinge.
+#[test]
+fn a_string_in_the_heads_gripper_swings_with_the_head() {
+    let string = "kind = \"string\"\nsize = \"2-7/8\"\nat = \"gripper\"\nmodel = { kind = \"rigid\" }";
+    let model = head_scenario("string", string, "").expect("a string on the head loads");
+    let pipearm::model::Payload::StringOnHead(held) = &model.payload else { panic!("{:?}", model.payload) };
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let bare = load_robot(&root.join("robots/pipe_arm_head.urdf")).unwrap().head.unwrap();
+    let head = model.robot.head.as_ref().unwrap();
+    let (m, d) = (held.pipe.mass_kg(), held.mass_centre_m() - bare.hinge_station_m);
+    let j = bare.inertia_about_hinge_kg_m2() + held.pipe.transverse_inertia_kg_m2() + m * d * d;
+    assert!(rel(head.mass_kg, bare.mass_kg + m) < 1e-12, "the head carries the string's mass");
+    let k = head.stiffness_n_m_per_rad();
+    let exact = (k / j).sqrt();
+    let drive = HubDrive::Prescribed(MotionProfile::hold(0.0));
+    let mut sim = ArmSimulation::new(arm(&model.robot, Fidelity::Rigid, 0.0), drive, IntegratorKind::Rk4).unwrap();
+    sim.set_head_state(HeadState { angle_rad: 0.01, rate_rad_s: 0.0 }).unwrap();
+    let mut psi = Vec::new();
+    while sim.time_s() < 20.0 {
+        sim.step(2e-3).unwrap();
+        psi.push((sim.time_s(), sim.head_state().unwrap().angle_rad));
+    }
+    let ups = crossings(&psi);
+    let measured = std::f64::consts::TAU * (ups.len() - 1) as f64 / (ups[ups.len() - 1] - ups[0]);
+    let case = "2-7/8 string in the head's gripper, rigid arm held still, no gravity, swung 0.01 rad";
+    let truth = "√(k / (J_head + J_string + m d²)) about the hinge";
+    validated_rel(&TILTING_HEAD, case, exact, truth, measured, "rad/s", 1e-4);
+    assert!(rel(measured, exact) < 1e-4, "{measured} against {exact}");
+}
+
+/// A string on the tilting head is held fast, rigid, by hands all on the head, and strikes no
+/// structure: anything else is refused before the run with the scenario's key.
+#[test]
+fn a_string_on_the_head_otherwise_held_is_refused_by_key() {
+    let string = |rest: &str| format!("kind = \"string\"\nsize = \"2-7/8\"\n{rest}");
+    let structure = "\n[[structures]]\nname = \"guide\"\nshape = { kind = \"box\", size_m = [0.2, 0.6, 0.3] }\n\
+                     position_m = [-0.1335, 2.6, 0.65]\nlaw = { kind = \"hunt-crossley\", stiffness = 2.0e7, exponent = 1.5, \
+                     restitution = 0.5 }\n";
+    for (tag, payload, extra, key, says) in [
+        (
+            "mixed",
+            string("grips = [{ hand = \"hand\", at_m = 4.75 }, { hand = \"gripper\", at_m = 8.05 }]"),
+            "",
+            "payload.grips",
+            "every hand on the head or none",
+        ),
+        ("friction", string("at = \"gripper\"\nclamp = \"friction\""), "", "payload.clamp", "held fast"),
+        (
+            "modal",
+            string("at = \"gripper\"\nmodel = { kind = \"modal\", modes = 3 }"),
+            "",
+            "payload.model",
+            "rigid with it",
+        ),
+        ("structure", string("at = \"gripper\""), structure, "structures", "takes no part in contact"),
+    ] {
+        let error = head_scenario(tag, &payload, extra).err().unwrap_or_else(|| panic!("{tag}: loaded"));
+        assert!(error.contains(&format!("`{key}`")) && error.contains(says), "{tag}: {error}");
+    }
 }
 
 /// The worst gap over a run between the root moment the section forces sum (Newton–Euler, the
@@ -317,6 +378,25 @@ fn with_a_swinging_head_the_root_moment_is_the_drive_torque_less_the_hubs_inerti
     common::validated_row(
         &TILTING_HEAD,
         "tilting_head.toml (head swinging on its mount, pad struck): root moment at every step",
+        "drive torque − J_hub θ̈ (Lagrange's θ equation)",
+        &format!("worst {worst:.1} N·m"),
+        &common::relative(worst / peak),
+        "< 1e-4 of the peak torque",
+    );
+    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
+}
+
+/// The same balance with a string in the head's gripper: its weight and inertia reach the arm
+/// through the head's hinge, in the section forces as in the drive's torque.
+#[test]
+fn with_a_string_on_the_head_the_root_moment_is_the_drive_torque_less_the_hubs_inertia() {
+    let string = "kind = \"string\"\nsize = \"2-7/8\"\nat = \"gripper\"";
+    let model = head_scenario("string-lift", string, "").unwrap();
+    let (worst, peak, summary) = root_moment_gap(&model);
+    assert!(summary.pairs[0].peak_force_n > 0.0 && summary.head.is_some());
+    common::validated_row(
+        &TILTING_HEAD,
+        "tilting_head.toml with a 2-7/8 string in the head's gripper: root moment at every step",
         "drive torque − J_hub θ̈ (Lagrange's θ equation)",
         &format!("worst {worst:.1} N·m"),
         &common::relative(worst / peak),

@@ -182,6 +182,13 @@ fn scene_facts(model: &crate::model::Model) -> Vec<String> {
                 if held.friction_clamp().is_some() { "friction" } else { "rigid" }
             )
         }
+        Payload::StringOnHead(held) => format!(
+            "payload string {}: {} m, {} kg; rigid in the tilting head's {}",
+            held.pipe.pipe.label,
+            metres(held.pipe.length_m),
+            trimmed(held.pipe.mass_kg(), 1),
+            held.grips.iter().map(|g| g.hand.as_str()).collect::<Vec<_>>().join(" and ")
+        ),
     });
     for d in &model.dampeners {
         facts.push(format!(

@@ -82,6 +82,19 @@ impl TiltingHead {
     }
 }
 
+impl TiltingHead {
+    /// This head carrying `body` rigidly (a string in its hands): `body`'s centre at its arm
+    /// station on the arm's axis in the URDF pose, its mass and own inertia added by the
+    /// parallel-axis sum.
+    pub fn carrying(mut self, body: &crate::beam::ConcentratedMass) -> Self {
+        let offset = [body.position_m - self.hinge_station_m, -self.hinge_lateral_m];
+        let own = (self.mass_kg, self.centre_of_mass_m, self.inertia_kg_m2);
+        (self.mass_kg, self.centre_of_mass_m, self.inertia_kg_m2) =
+            combined(&[own, (body.mass_kg, offset, body.rotary_inertia_kg_m2)]);
+        self
+    }
+}
+
 /// Mass, centre of mass [x, y] and inertia about it (normal to the plane) of point bodies given
 /// as (mass kg, [x, y] m, own inertia kg·m²): the parallel-axis sum.
 pub(crate) fn combined(bodies: &[(f64, [f64; 2], f64)]) -> (f64, [f64; 2], f64) {
