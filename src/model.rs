@@ -180,8 +180,9 @@ pub enum Payload {
     /// A pipe string held by the gripper.
     String(HeldString),
     /// A pipe string held by hands on the tilting head: rigid with it, its mass and inertia the
-    /// head's ([`crate::robot::TiltingHead::carrying`]), so the arm carries it at the hinge and
-    /// nothing reads it as a string of its own (no string outputs, no string contact).
+    /// head's ([`crate::robot::TiltingHead::carrying`]), so the arm carries it at the hinge; it is
+    /// drawn turning with the head, and nothing reads it as a string of its own (no string
+    /// outputs, no string contact).
     StringOnHead(HeldString),
 }
 
@@ -209,6 +210,15 @@ impl Payload {
     pub fn string(&self) -> Option<&HeldString> {
         match self {
             Payload::String(held) => Some(held),
+            _ => None,
+        }
+    }
+
+    /// The held string, on the arm or on the tilting head, if the payload is one (for what is
+    /// drawn: [`Self::string`] is the string as a body of its own).
+    pub fn held_string(&self) -> Option<&HeldString> {
+        match self {
+            Payload::String(held) | Payload::StringOnHead(held) => Some(held),
             _ => None,
         }
     }

@@ -180,7 +180,7 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
             pieces.push(piece);
         }
     }
-    if let Some(held) = model.payload.string()
+    if let Some(held) = model.payload.held_string()
         && let Some(clamp) = robot.body(&held.palm().hand)
     {
         let [lateral, normal] = robot.string_axis_offset_m(clamp);
@@ -195,6 +195,8 @@ pub(super) fn shapes_over(model: &Model, elements: impl Iterator<Item = (f64, f6
             SharedShape::cylinder(half_length, radius),
         );
         string.side = Side::String;
+        // In the tilting head's hands it turns with the head (drawn only: it strikes nothing).
+        string.hinge_m = robot.head.as_ref().filter(|_| clamp.tilts).map(|h| [h.hinge_station_m, h.hinge_lateral_m]);
         pieces.push(string);
     }
     pieces
