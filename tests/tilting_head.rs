@@ -79,6 +79,19 @@ fn crossings(samples: &[(f64, f64)]) -> Vec<f64> {
         .collect()
 }
 
+/// The head's swing frequency (rad/s) once released 0.01 rad from its rest in `sim`, over
+/// `duration_s` in steps of `step_s`: from ψ's upward zero crossings.
+fn swing_rad_s(sim: &mut ArmSimulation, duration_s: f64, step_s: f64) -> f64 {
+    sim.set_head_state(HeadState { angle_rad: 0.01, rate_rad_s: 0.0 }).unwrap();
+    let mut psi = Vec::new();
+    while sim.time_s() < duration_s {
+        sim.step(step_s).unwrap();
+        psi.push((sim.time_s(), sim.head_state().unwrap().angle_rad));
+    }
+    let ups = crossings(&psi);
+    std::f64::consts::TAU * (ups.len() - 1) as f64 / (ups[ups.len() - 1] - ups[0])
+}
+
 /// A head hanging below the tip of a rigid arm held still swings as a compound pendulum on a
 /// torsion spring: ω² = (m g d + k) / (J + m d²).
 #[test]
@@ -91,14 +104,7 @@ fn a_head_below_a_rigid_arm_swings_as_a_compound_pendulum() {
     let drive = HubDrive::Prescribed(MotionProfile::hold(0.0));
     let mut sim = ArmSimulation::new(arm, drive, IntegratorKind::Rk4).unwrap();
     assert!(sim.head_state().unwrap().angle_rad.abs() < 1e-12, "hanging straight down is its rest");
-    sim.set_head_state(HeadState { angle_rad: 0.01, rate_rad_s: 0.0 }).unwrap();
-    let mut psi = Vec::new();
-    while sim.time_s() < 14.0 {
-        sim.step(1e-3).unwrap();
-        psi.push((sim.time_s(), sim.head_state().unwrap().angle_rad));
-    }
-    let ups = crossings(&psi);
-    let measured = std::f64::consts::TAU * (ups.len() - 1) as f64 / (ups[ups.len() - 1] - ups[0]);
+    let measured = swing_rad_s(&mut sim, 14.0, 1e-3);
     let exact = ((m * g * d + k) / (j + m * d * d)).sqrt();
     let case = "head hanging 0.3 m below a rigid arm's tip, arm held still, swung 0.01 rad";
     validated_rel(&TILTING_HEAD, case, exact, "√((m g d + k)/(J + m d²))", measured, "rad/s", 1e-4);
@@ -302,14 +308,7 @@ fn a_string_in_the_heads_gripper_swings_with_the_head() {
     let exact = (k / j).sqrt();
     let drive = HubDrive::Prescribed(MotionProfile::hold(0.0));
     let mut sim = ArmSimulation::new(arm(&model.robot, Fidelity::Rigid, 0.0), drive, IntegratorKind::Rk4).unwrap();
-    sim.set_head_state(HeadState { angle_rad: 0.01, rate_rad_s: 0.0 }).unwrap();
-    let mut psi = Vec::new();
-    while sim.time_s() < 20.0 {
-        sim.step(2e-3).unwrap();
-        psi.push((sim.time_s(), sim.head_state().unwrap().angle_rad));
-    }
-    let ups = crossings(&psi);
-    let measured = std::f64::consts::TAU * (ups.len() - 1) as f64 / (ups[ups.len() - 1] - ups[0]);
+    let measured = swing_rad_s(&mut sim, 20.0, 2e-3);
     let case = "2-7/8 string in the head's gripper, rigid arm held still, no gravity, swung 0.01 rad";
     let truth = "√(k / (J_head + J_string + m d²)) about the hinge";
     validated_rel(&TILTING_HEAD, case, exact, truth, measured, "rad/s", 1e-4);
