@@ -2,8 +2,10 @@
 //! the quantities the step loop needs (SI units, radians).
 //!
 //! Data flows one way: a scenario file ([`crate::scenario`]) is read, checked and resolved into a
-//! [`Model`]; [`crate::select`], [`crate::scene`], [`crate::run`] and [`crate::bench`] take the
-//! model, never the file. A model may also be built or edited in code (the bench varies its step,
+//! [`Model`] (the file's model); a run compiles it once into a [`crate::run::CompiledModel`] (the
+//! arm reduced to its fidelity, the choices, the channels) and steps a fresh scene from that;
+//! [`crate::select`], [`crate::scene`], [`crate::run`] and [`crate::bench`] take the model, never
+//! the file. A model may also be built or edited in code (the bench varies its step,
 //! integrator and pad laws); it is then the caller's to keep within the ranges the scenario's
 //! checks enforce.
 //!

@@ -51,7 +51,12 @@ pub fn capacity(path: &Path, step_deg: f64) -> Result<()> {
     }
     println!(
         "arm and carried links: {machine:.1} kg·m about the pivot; payload centre of mass {station_m:.3} m out{}",
-        if string.is_none() && mass_kg == 0.0 { " (no payload: at the arm's tip)" } else { "" }
+        match &model.payload {
+            pipearm::model::Payload::StringOnHead(_) =>
+                " (the string is rigid with the tilting head: in the machine's moment)",
+            _ if string.is_none() && mass_kg == 0.0 => " (no payload: at the arm's tip)",
+            _ => "",
+        }
     );
     let limits = lift_limits(model);
     let (lo, hi) = robot.lift.limits_rad;
