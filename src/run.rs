@@ -450,8 +450,12 @@ fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series)
                 stress_pa: &series.string_stress_pa,
                 peak_stress: &series.string_peak_stress,
             };
-            summary.string =
-                Some(crate::sensor::string::StringSummary::of(model, &scene.arm.arm.beam, choice.clone(), &readings)?);
+            summary.string = Some(crate::sensor::string::StringSummary::of(
+                model,
+                &compiled.string_frequencies_hz,
+                choice.clone(),
+                &readings,
+            ));
         }
         Ok(summary)
     });

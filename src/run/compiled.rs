@@ -21,6 +21,11 @@ pub struct CompiledModel<'a> {
     pub channels: Vec<Channel>,
     /// Each contact pair's name, in the scene's order ([`crate::scene::pair_names`]).
     pub pair_names: Vec<String>,
+    /// A held string's natural frequencies clamped in its hands, Hz: of the run's beam where it
+    /// holds the string as a beam of its own (every fixed-interface mode is solved whatever the
+    /// kept count), else of the fe string's (compiled here, not after the run); empty without a
+    /// string.
+    pub string_frequencies_hz: Vec<f64>,
 }
 
 impl<'a> CompiledModel<'a> {
@@ -28,8 +33,9 @@ impl<'a> CompiledModel<'a> {
     /// kept from earlier compilations that it shares (the beam, its modes, the reduced arm).
     pub fn new(model: &'a Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<Self, ArmError> {
         let arm = crate::select::compile_arm(model, fidelity, compiler)?;
-        let mut compiled =
-            CompiledModel { model, arm, channels: Vec::new(), pair_names: crate::scene::pair_names(model) };
+        let string_frequencies_hz = string_frequencies_hz(model, &arm, compiler)?;
+        let pair_names = crate::scene::pair_names(model);
+        let mut compiled = CompiledModel { model, arm, channels: Vec::new(), pair_names, string_frequencies_hz };
         compiled.channels = super::channels(model, compiled.modal_dofs());
         Ok(compiled)
     }
@@ -38,4 +44,16 @@ impl<'a> CompiledModel<'a> {
     pub fn modal_dofs(&self) -> usize {
         if self.arm.arm.fidelity == Fidelity::Fe { 0 } else { self.arm.model.elastic_dofs() }
     }
+}
+
+/// [`CompiledModel::string_frequencies_hz`] of `model` with its arm compiled as `arm`.
+fn string_frequencies_hz(model: &Model, arm: &CompiledArm, compiler: &Compiler) -> Result<Vec<f64>, ArmError> {
+    if model.payload.string().is_none() {
+        return Ok(Vec::new());
+    }
+    if let Some(modes) = arm.model.beam.member_modes() {
+        return Ok(modes.frequencies_hz());
+    }
+    let fe = compiler.beam(&model.beam_spec_with_string(Some(Fidelity::Fe))?)?;
+    Ok(fe.beam().member_modes().map(|m| m.frequencies_hz()).unwrap_or_default())
 }

@@ -229,9 +229,10 @@ impl Check<'_> {
     /// there (the controller sampling continuously): every pole must decay, and an explicit
     /// integrator's step must keep each inside its stability region.
     fn closed_loop_on_path(&self, model: &Model) -> Result<(), ScenarioError> {
-        let compiled = crate::select::compile_arm(model, None, self.compiler)
+        // The model the run compiles (through the shared compiler, which keeps it for the run).
+        let compiled = crate::run::CompiledModel::new(model, None, self.compiler)
             .map_err(|e| self.invalid("payload", e.to_string()))?;
-        let arm = compiled.model;
+        let arm = compiled.arm.model.clone();
         let start = self.holding(model, ArmSimulation::new(arm.clone(), model.hub_drive(), model.integrator))?;
         let mut poles = self.decaying_poles(model, &arm, &start, &|m: &Model| m.hub_drive(), "at the start")?;
         let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());

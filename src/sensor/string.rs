@@ -423,23 +423,17 @@ pub struct StringSeries<'a> {
 }
 
 impl StringSummary {
-    /// The summary of a run's string at `fidelity` chosen as `choice` says, from its `readings`. The frequencies are those of the run's beam where it holds the string as a
-    /// beam of its own (every fixed-interface mode is solved whatever the kept count), else of
-    /// `model`'s fe string.
+    /// The summary of a run's string at the fidelity chosen as `choice` says, from its
+    /// `readings`, with its frequencies in its hands as compiled
+    /// ([`crate::run::CompiledModel::string_frequencies_hz`]).
     pub fn of(
         model: &crate::model::Model,
-        beam: &crate::beam::BeamModel,
+        frequencies_hz: &[f64],
         choice: crate::select::Choice,
         readings: &StringSeries,
-    ) -> Result<Self, crate::beam::BeamError> {
+    ) -> Self {
         let (t_s, tip_deflection_m, stress_pa) = (readings.t_s, readings.tip_deflection_m, readings.stress_pa);
-        let frequencies_hz = match beam.member_modes() {
-            Some(modes) => modes.frequencies_hz(),
-            None => {
-                let spec = model.beam_spec_with_string(Some(crate::arm::Fidelity::Fe))?;
-                crate::beam::BeamModel::new(spec)?.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default()
-            }
-        };
+        let frequencies_hz = frequencies_hz.to_vec();
         let yield_strength_pa = model.payload.string().and_then(|held| held.pipe.pipe.yield_strength_pa);
 
         let (i, stress) =
@@ -451,7 +445,7 @@ impl StringSummary {
             .fold((0, [0.0, 0.0]), |best, (k, p)| if p[0] > best.1[0] { (k, *p) } else { best });
         let held = model.payload.string().expect("a string summary is of a held string");
         let (pipe, joints) = (&held.pipe.pipe, held.pipe.joints);
-        Ok(StringSummary {
+        StringSummary {
             pipe: pipe.label.clone(),
             size: pipe.size.clone(),
             weight_lb_ft: pipe.row.map(|r| r.nominal_weight_lb_ft),
@@ -471,6 +465,6 @@ impl StringSummary {
             peak_stress_station_m: peak[1],
             peak_stress_time_s: t_s.get(k).copied().unwrap_or(0.0),
             peak_stress_to_yield: yield_strength_pa.map(|y| peak[0] / y),
-        })
+        }
     }
 }
