@@ -278,15 +278,20 @@ fn a_bad_hinge_is_named() {
     assert!(error.contains("joint[wrist].axis") && error.contains("normal to the lift"), "{error}");
 }
 
-/// `scenarios/tilting_head.toml` with its payload `payload` and, appended, `extra`, loaded.
-fn head_scenario(tag: &str, payload: &str, extra: &str) -> Result<pipearm::model::Model, String> {
+/// `scenarios/tilting_head.toml` as `edit` rewrites its text, loaded.
+fn edited_head_scenario(tag: &str, edit: impl FnOnce(String) -> String) -> Result<pipearm::model::Model, String> {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(root.join("scenarios/tilting_head.toml")).unwrap();
     let path = root.join(format!("scenarios/.head-{tag}-{}.toml", std::process::id()));
-    std::fs::write(&path, text.replace("kind = \"none\"", payload) + extra).unwrap();
+    std::fs::write(&path, edit(text)).unwrap();
     let loaded = pipearm::scenario::Scenario::load(&path).map(|s| s.model).map_err(|e| e.to_string());
     std::fs::remove_file(&path).ok();
     loaded
+}
+
+/// `scenarios/tilting_head.toml` with its payload `payload` and, appended, `extra`, loaded.
+fn head_scenario(tag: &str, payload: &str, extra: &str) -> Result<pipearm::model::Model, String> {
+    edited_head_scenario(tag, |text| text.replace("kind = \"none\"", payload) + extra)
 }
 
 /// A string in the gripper on the tilting head is rigid with the head: on a rigid arm held still,
@@ -363,6 +368,22 @@ fn root_moment_gap(model: &pipearm::model::Model) -> (f64, f64, pipearm::run::Ru
     (worst, peak, summary)
 }
 
+/// Runs `model` and holds its root moment to `torque` less J_hub θ̈ within 1e-4 of the peak
+/// torque at every step ([`root_moment_gap`]), reported as `case`; returns the run's summary.
+fn assert_root_moment_balance(model: &pipearm::model::Model, case: &str, torque: &str) -> pipearm::run::RunSummary {
+    let (worst, peak, summary) = root_moment_gap(model);
+    common::validated_row(
+        &TILTING_HEAD,
+        case,
+        &format!("{torque} − J_hub θ̈ (Lagrange's θ equation)"),
+        &format!("worst {worst:.1} N·m"),
+        &common::relative(worst / peak),
+        "< 1e-4 of the peak torque",
+    );
+    assert!(worst < 1e-4 * peak, "{case}: worst {worst} N·m against a peak of {peak}");
+    summary
+}
+
 /// Lagrange's θ equation gives the drive torque (the head's share through its θ row); the
 /// section forces sum Newton–Euler on what is outboard of the root, the head's load on the arm
 /// at its hinge included: through the shipped lift, whose head swings on its mount and whose
@@ -371,18 +392,10 @@ fn root_moment_gap(model: &pipearm::model::Model) -> (f64, f64, pipearm::run::Ru
 fn with_a_swinging_head_the_root_moment_is_the_drive_torque_less_the_hubs_inertia() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/tilting_head.toml");
     let model = pipearm::scenario::Scenario::load(&path).unwrap().model;
-    let (worst, peak, summary) = root_moment_gap(&model);
+    let case = "tilting_head.toml (head swinging on its mount, pad struck): root moment at every step";
+    let summary = assert_root_moment_balance(&model, case, "drive torque");
     let swing = summary.head.as_ref().unwrap();
     assert!(swing.max_angle_deg - swing.min_angle_deg > 5.0, "the head swung: {swing:?}");
-    common::validated_row(
-        &TILTING_HEAD,
-        "tilting_head.toml (head swinging on its mount, pad struck): root moment at every step",
-        "drive torque − J_hub θ̈ (Lagrange's θ equation)",
-        &format!("worst {worst:.1} N·m"),
-        &common::relative(worst / peak),
-        "< 1e-4 of the peak torque",
-    );
-    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
 /// The same balance with a string in the head's gripper: its weight and inertia reach the arm
@@ -391,42 +404,25 @@ fn with_a_swinging_head_the_root_moment_is_the_drive_torque_less_the_hubs_inerti
 fn with_a_string_on_the_head_the_root_moment_is_the_drive_torque_less_the_hubs_inertia() {
     let string = "kind = \"string\"\nsize = \"2-7/8\"\nat = \"gripper\"";
     let model = head_scenario("string-lift", string, "").unwrap();
-    let (worst, peak, summary) = root_moment_gap(&model);
+    let case = "tilting_head.toml with a 2-7/8 string in the head's gripper: root moment at every step";
+    let summary = assert_root_moment_balance(&model, case, "drive torque");
     assert!(summary.pairs[0].peak_force_n > 0.0 && summary.head.is_some());
-    common::validated_row(
-        &TILTING_HEAD,
-        "tilting_head.toml with a 2-7/8 string in the head's gripper: root moment at every step",
-        "drive torque − J_hub θ̈ (Lagrange's θ equation)",
-        &format!("worst {worst:.1} N·m"),
-        &common::relative(worst / peak),
-        "< 1e-4 of the peak torque",
-    );
-    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
 /// The same balance with the servo driving the hub (its torque from the motor through the drive
 /// train, the hub free): the actuator holds arm and head at rest at the start and lifts them.
 #[test]
 fn under_a_servo_the_head_keeps_the_root_moment_balance() {
-    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(root.join("scenarios/tilting_head.toml")).unwrap();
     let servo = "[actuator]\nkind = \"servo\"\ncontroller = { kp = 2.0e6, ki = 2.0e6, kd = 5.0e5 }\n\n[contact]";
-    let path = root.join(format!("scenarios/.head-servo-{}.toml", std::process::id()));
-    std::fs::write(&path, text.replace("[contact]", servo).replace("step_s = 0.003", "step_s = 0.002")).unwrap();
-    let model = pipearm::scenario::Scenario::load(&path);
-    std::fs::remove_file(&path).ok();
-    let (worst, peak, summary) = root_moment_gap(&model.unwrap().model);
+    let model = edited_head_scenario("servo", |text| {
+        text.replace("[contact]", servo).replace("step_s = 0.003", "step_s = 0.002")
+    })
+    .unwrap();
+    let case = "tilting_head.toml under the servo (hub free, held at rest by the motor at the start): root moment at \
+                every step";
+    let summary = assert_root_moment_balance(&model, case, "hub torque");
     let head = summary.head.as_ref().unwrap();
     assert!(head.max_angle_deg - head.min_angle_deg > 5.0, "the head swung: {head:?}");
-    common::validated_row(
-        &TILTING_HEAD,
-        "tilting_head.toml under the servo (hub free, held at rest by the motor at the start): root moment at every step",
-        "hub torque − J_hub θ̈ (Lagrange's θ equation)",
-        &format!("worst {worst:.1} N·m"),
-        &common::relative(worst / peak),
-        "< 1e-4 of the peak torque",
-    );
-    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }
 
 /// A driven head below a rigid arm held still follows its profile exactly; its drive gives
@@ -491,17 +487,10 @@ fn a_driven_head_keeps_the_root_moment_balance_through_a_lift() {
     assert!(missing.contains("head.drive") && missing.contains("missing"), "{missing}");
     let negative = negative.expect("a negative head drive loaded");
     assert!(negative.contains("head.drive.duration_s"), "{negative}");
-    let (worst, peak, summary) = root_moment_gap(&model.unwrap().model);
+    let case = "tilting_head.toml with the head driven 0 → 30° (trapezoidal, 12 s) during the lift: root moment at \
+                every step";
+    let summary = assert_root_moment_balance(&model.unwrap().model, case, "drive torque");
     let head = summary.head.as_ref().unwrap();
     assert!((head.max_angle_deg - 30.0).abs() < 1e-9, "the head ends at its profile's 30°: {head:?}");
     assert!(head.peak_drive_torque_n_m.unwrap() > 300.0, "{head:?}");
-    common::validated_row(
-        &TILTING_HEAD,
-        "tilting_head.toml with the head driven 0 → 30° (trapezoidal, 12 s) during the lift: root moment at every step",
-        "drive torque − J_hub θ̈ (Lagrange's θ equation)",
-        &format!("worst {worst:.1} N·m"),
-        &common::relative(worst / peak),
-        "< 1e-4 of the peak torque",
-    );
-    assert!(worst < 1e-4 * peak, "worst {worst} N·m against a peak of {peak}");
 }

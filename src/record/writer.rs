@@ -48,10 +48,17 @@ impl Writer<'_> {
         values.into_iter().zip(self.keep).filter(|(_, k)| **k).map(|(v, _)| v).collect()
     }
 
+    /// The steps the plots keep, and their times on `sim_time`.
+    fn kept_steps(&self) -> (Vec<usize>, TimeColumn) {
+        let t_s = &self.run.series.t_s;
+        let rows: Vec<usize> = (0..t_s.len()).filter(|&k| self.keeps(k)).collect();
+        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| t_s[k]));
+        (rows, times)
+    }
+
     /// The kept steps of `value` of a step, evaluated at those steps only.
     pub(super) fn send_kept(&mut self, entity: &str, value: impl Fn(usize) -> f64) -> RecordingStreamResult<()> {
-        let rows: Vec<usize> = (0..self.run.series.t_s.len()).filter(|&k| self.keeps(k)).collect();
-        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| self.run.series.t_s[k]));
+        let (rows, times) = self.kept_steps();
         let columns = rerun::Scalars::new(rows.into_iter().map(value)).columns_of_unit_batches()?;
         self.send_columns(entity, times, columns)
     }
@@ -67,8 +74,7 @@ impl Writer<'_> {
         value: impl Fn(usize, usize) -> f64,
     ) -> RecordingStreamResult<()> {
         let width = names.len();
-        let rows: Vec<usize> = (0..self.run.series.t_s.len()).filter(|&k| self.keeps(k)).collect();
-        let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| self.run.series.t_s[k]));
+        let (rows, times) = self.kept_steps();
         let values = rows.iter().flat_map(|&k| (0..width).map(move |i| (k, i))).map(|(k, i)| value(k, i));
         let scalars = rerun::Scalars::new(values).columns(std::iter::repeat_n(width, rows.len()))?;
         self.send_columns(entity, times, scalars)?;
