@@ -37,8 +37,9 @@ pub struct Plot {
     pub entity: String,
     /// Factor from SI to the plot's unit (the hub is plotted in degrees).
     pub scale: f64,
-    /// The trace's name where several channels share the entity, an instance each (the
-    /// energies, the elastic coordinates); `None` for an entity of its own.
+    /// The trace's name where several channels share the entity, an instance each (the tip's
+    /// axial and transverse, the energies, the elastic coordinates, the pins); `None` for an
+    /// entity of its own.
     pub trace: Option<String>,
 }
 

@@ -4,8 +4,11 @@
 use crate::channel::{Channel, Reading};
 use crate::robot::{HingeLaw, TiltingHead};
 
-/// Entity path of the transverse tip deflection's plot.
-pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection/transverse";
+/// Entity path of the tip deflection's plot: axial and transverse, a trace each.
+pub const TIP_DEFLECTION_ENTITY: &str = "plots/tip_deflection";
+
+/// Entity path of the tip velocity's plot: axial and transverse, a trace each.
+pub const TIP_VELOCITY_ENTITY: &str = "plots/tip_velocity";
 
 /// Entity path of the energies' plot: kinetic, strain and gravity, a trace each.
 pub const ENERGY_ENTITY: &str = "plots/energy";
@@ -27,11 +30,10 @@ pub fn channels() -> Vec<Channel> {
     let axes = ["axial", "transverse"].into_iter().enumerate();
     out.extend(axes.clone().map(|(k, axis)| {
         Channel::new(format!("tip_deflection.{axis}"), "m", Reading::TipDeflection(k))
-            .plotted(format!("plots/tip_deflection/{axis}"), 1.0)
+            .traced(TIP_DEFLECTION_ENTITY, axis)
     }));
     out.extend(axes.map(|(k, axis)| {
-        Channel::new(format!("tip_velocity.{axis}"), "m/s", Reading::TipVelocity(k))
-            .plotted(format!("plots/tip_velocity/{axis}"), 1.0)
+        Channel::new(format!("tip_velocity.{axis}"), "m/s", Reading::TipVelocity(k)).traced(TIP_VELOCITY_ENTITY, axis)
     }));
     out.push(Channel::new("drive_torque", "N*m", Reading::DriveTorque).plotted("plots/drive_torque", 1.0));
     out.into_iter().map(Channel::measurable).collect()

@@ -10,7 +10,7 @@
 use rerun::log::{Chunk, ChunkComponents, ChunkId};
 
 use super::Comparison;
-use crate::channel::Channel;
+use crate::channel::{Channel, Plot};
 use crate::measured::{Column, Measured};
 
 /// An error from rerun's chunk builder.
@@ -23,9 +23,13 @@ pub struct OverlayError {
     pub message: String,
 }
 
-/// Entity path of a signal's measured overlay.
-pub fn measured_entity(signal_entity: &str) -> String {
-    format!("{signal_entity}/measured")
+/// Entity path of a signal's measured overlay: a child of its plot's entity (of its trace's
+/// where it is one of several).
+pub fn measured_entity(plot: &Plot) -> String {
+    match &plot.trace {
+        Some(trace) => format!("{}/{trace}/measured", plot.entity),
+        None => format!("{}/measured", plot.entity),
+    }
 }
 
 /// One chunk per measured column (SI `columns` of `measured`, as [`Measured::to_si`] gives them),
@@ -40,7 +44,7 @@ pub fn measured_chunks(
     let mut chunks = Vec::with_capacity(columns.len());
     for column in columns {
         let Some(plot) = defs.iter().find(|d| d.name == column.name).and_then(|d| d.plot.as_ref()) else { continue };
-        let entity = measured_entity(&plot.entity);
+        let entity = measured_entity(plot);
         let error = |e: &dyn std::fmt::Display| OverlayError { entity: entity.clone(), message: e.to_string() };
         let rows: Vec<(f64, f64)> = measured
             .t_s

@@ -7,8 +7,8 @@ use std::borrow::Cow;
 use rerun::log::{Chunk, RowId};
 use rerun::{RecordingStreamResult, TextLogLevel, TimeColumn};
 
-use super::writer::{Writer, centreline_points};
-use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, Recorded};
+use super::writer::{Writer, centreline_points, from_first_row};
+use super::{CENTRELINE_ENTITY, CONTACT_FORCE_ENTITY, Ending, PIECES_ENTITY, Recorded};
 use crate::channel::{Channel, Plot, Reading};
 use crate::contact::{Impact, ImpactTracker};
 use crate::model::StructureShape;
@@ -156,33 +156,35 @@ impl Writer<'_> {
         );
         let frames = &run.series.frames;
         let times = || TimeColumn::new_duration_secs("sim_time", frames.iter().map(|f| f.t_s));
-        // One chunk per entity: shapes and poses go in the same columns (send_columns), not a
-        // log call per frame, nor a static chunk for the shapes beside the poses — rerun's cost
-        // is per chunk (encoding, footer manifest), the repeated half sizes are a few kB.
-        for (name, indices) in group_pieces(layout) {
-            let entity = format!("world/{name}");
-            let half_sizes = frames.iter().flat_map(|_| indices.iter().map(|&i| layout.pieces[i].1.map(|v| v as f32)));
-            let centers = frames.iter().flat_map(|f| indices.iter().map(|&i| vec3(f.pieces[i].translation)));
-            let quats = frames.iter().flat_map(|f| indices.iter().map(|&i| quat(f.pieces[i].rotation)));
-            let columns = rerun::Boxes3D::update_fields()
-                .with_half_sizes(half_sizes.collect::<Vec<_>>())
-                .with_centers(centers.collect::<Vec<_>>())
-                .with_quaternions(quats.collect::<Vec<_>>())
-                .columns(std::iter::repeat_n(indices.len(), frames.len()))?;
-            self.send_columns(&entity, times(), columns)?;
-        }
-        let pads = || frames.iter().flat_map(|f| f.pads.iter().zip(&layout.pads));
+        // Every piece of the machine in one entity, a box each: its poses at every frame, its
+        // sizes and colours at the first (they hold for the later ones). rerun's cost is per
+        // chunk (encoding, footer manifest), so one chunk for all.
+        let per_frame = layout.pieces.len();
+        let centers = frames.iter().flat_map(|f| f.pieces.iter().map(|p| vec3(p.translation)));
+        let quats = frames.iter().flat_map(|f| f.pieces.iter().map(|p| quat(p.rotation)));
+        let poses = rerun::Boxes3D::update_fields()
+            .with_centers(centers.collect::<Vec<_>>())
+            .with_quaternions(quats.collect::<Vec<_>>())
+            .columns(std::iter::repeat_n(per_frame, frames.len()))?;
+        let shapes = rerun::Boxes3D::update_fields()
+            .with_half_sizes(layout.pieces.iter().map(|p| p.1.map(|v| v as f32)).collect::<Vec<_>>())
+            .with_colors(piece_colours(layout))
+            .columns([per_frame])?;
+        self.send_columns(PIECES_ENTITY, times(), poses.chain(from_first_row(shapes, frames.len())))?;
+        let poses = || frames.iter().flat_map(|f| f.pads.iter());
         let columns = rerun::Boxes3D::update_fields()
-            .with_half_sizes(pads().map(|(_, p)| p.1.map(|v| v as f32)).collect::<Vec<_>>())
-            .with_labels(pads().map(|(_, p)| p.0.clone()).collect::<Vec<_>>())
-            .with_colors(pads().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
-            .with_centers(pads().map(|(pose, _)| vec3(pose.translation)).collect::<Vec<_>>())
-            .with_quaternions(pads().map(|(pose, _)| quat(pose.rotation)).collect::<Vec<_>>())
+            .with_centers(poses().map(|pose| vec3(pose.translation)).collect::<Vec<_>>())
+            .with_quaternions(poses().map(|pose| quat(pose.rotation)).collect::<Vec<_>>())
             .columns(std::iter::repeat_n(layout.pads.len(), frames.len()))?;
+        let shapes = rerun::Boxes3D::update_fields()
+            .with_half_sizes(layout.pads.iter().map(|p| p.1.map(|v| v as f32)).collect::<Vec<_>>())
+            .with_labels(layout.pads.iter().map(|p| p.0.clone()).collect::<Vec<_>>())
+            .with_colors(layout.pads.iter().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
+            .columns([layout.pads.len()])?;
         // The fill mode is one value per row, not per box: its own partition, the same chunk.
-        let fill_rows = std::iter::repeat_n(rerun::FillMode::Solid, frames.len()).collect::<Vec<_>>();
-        let fill = rerun::Boxes3D::update_fields().with_many_fill_mode(fill_rows).columns_of_unit_batches()?;
-        self.send_columns("world/pads", times(), columns.chain(fill))?;
+        let fill = rerun::Boxes3D::update_fields().with_many_fill_mode([rerun::FillMode::Solid]).columns([1])?;
+        let columns = columns.chain(from_first_row(shapes.chain(fill), frames.len()));
+        self.send_columns("world/pads", times(), columns)?;
         let note = match super::stress::Shading::of(run) {
             Some(shading) => {
                 self.shaded_centreline(&shading, layout, magnify)?;
@@ -201,10 +203,12 @@ impl Writer<'_> {
             let strips = frames.iter().map(|f| string_points(layout, f));
             let columns = rerun::LineStrips3D::update_fields()
                 .with_strips(strips.collect::<Vec<_>>())
-                .with_colors(vec![rerun::Color::from_rgb(30, 110, 200); frames.len()])
-                .with_radii(vec![rerun::Radius::new_scene_units(0.04); frames.len()])
-                .columns(std::iter::repeat_n(1, frames.len()))?;
-            self.send_columns("world/string", times(), columns)?;
+                .columns_of_unit_batches()?;
+            let style = rerun::LineStrips3D::update_fields()
+                .with_colors([rerun::Color::from_rgb(30, 110, 200)])
+                .with_radii([rerun::Radius::new_scene_units(0.04)])
+                .columns([1])?;
+            self.send_columns("world/string", times(), columns.chain(from_first_row(style, frames.len())))?;
         }
         let origins: Vec<[f32; 3]> =
             frames.iter().flat_map(|f| f.contacts.iter().map(|c| c.1.map(|v| v as f32))).collect();
@@ -360,15 +364,24 @@ fn findings(summary: &crate::run::RunSummary) -> Vec<(f64, String, &'static str)
 }
 
 /// Piece indices grouped by name, in first-seen order (all elements of the arm in one entity).
-fn group_pieces(layout: &SceneLayout) -> Vec<(String, Vec<usize>)> {
-    let mut groups: Vec<(String, Vec<usize>)> = Vec::new();
-    for (i, (name, _)) in layout.pieces.iter().enumerate() {
-        match groups.iter_mut().find(|g| &g.0 == name) {
-            Some(g) => g.1.push(i),
-            None => groups.push((name.clone(), vec![i])),
-        }
-    }
-    groups
+/// Each piece's colour: one per kind of piece (those of one name: the arm's segments, a hand, a
+/// jaw), in the order the kinds first appear, from a palette of distinct hues.
+fn piece_colours(layout: &SceneLayout) -> Vec<rerun::Color> {
+    const PALETTE: [(u8, u8, u8); 6] =
+        [(110, 110, 120), (120, 170, 210), (230, 160, 50), (90, 190, 120), (200, 100, 160), (170, 140, 220)];
+    let mut kinds: Vec<&str> = Vec::new();
+    layout
+        .pieces
+        .iter()
+        .map(|(name, _)| {
+            let kind = kinds.iter().position(|k| k == name).unwrap_or_else(|| {
+                kinds.push(name);
+                kinds.len() - 1
+            });
+            let (r, g, b) = PALETTE[kind % PALETTE.len()];
+            rerun::Color::from_rgb(r, g, b)
+        })
+        .collect()
 }
 
 /// The held string's deformed centreline at true scale, on its axis off the lift plane.

@@ -5,7 +5,8 @@
 //!
 //! | entity | what |
 //! |---|---|
-//! | `world/…` | 3D: hub, arm elements, hand, gripper, jaws, string, pads, ground (boxes, m, Y up) |
+//! | `world/machine` | 3D: the machine's pieces — hub, arm elements, hands, jaws, a tilting head's — a box each, coloured by kind (m, Y up) |
+//! | `world/string`, `world/pads`, `world/ground` | the held string's centreline, the pads, the rig floor |
 //! | `world/centreline` | the deformed centreline, its deflection magnified (the factor in `events`); with the sign-off, shaded per piece by utilisation (by \|σ\| against the run's peak without a yield strength) |
 //! | `world/stress_legend` | the shading's colour bar, labelled, beyond the arm's reach |
 //! | `world/stress_peak` | a marker at the worst station (the largest utilisation's, else the largest \|σ\|'s), labelled |
@@ -24,7 +25,7 @@
 //! | `plots/sensors/<sensor>/<channel>` | each sensor's channels, SI (`crate::sensor`) |
 //! | `plots/stress/worst_station` | σ at the worst station and fibre, Pa |
 //! | `plots/stress/yield/{tension,compression}` | ± yield / stress_factor there, Pa (where a yield strength is given and the peak reaches half of it; else the trace's name gives it) |
-//! | `plots/pins/{pivot,cylinder}`, `plots/pins/hands/<hand>` | pin and grip force magnitudes, N |
+//! | `plots/pins` | pin and grip force magnitudes, N: a trace each, `pivot`, `cylinder` (several: `cylinder_<k>`), each hand by name |
 //! | `events` | impacts (start, peak, end), warnings, the model, the display scales: each at its time; a diverged run's guard message last |
 //! | `summary` | the run summary (JSON; not for a diverged run) |
 //!
@@ -54,7 +55,7 @@ pub use crate::arm::{ENERGY_ENTITY, MODAL_ENTITY, TIP_DEFLECTION_ENTITY};
 pub use crate::scene::{force_entity, pair_name};
 pub use content::{arrow_scale_n_per_m, magnification};
 pub use stream::Viewer;
-pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PIVOT_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY};
+pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PINS_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY};
 
 use crate::run::{RunSummary, Series};
 
@@ -83,6 +84,10 @@ pub enum RecordError {
 
 /// Entity path of the magnified centreline.
 pub const CENTRELINE_ENTITY: &str = "world/centreline";
+
+/// Entity path of the machine's pieces (hub, the arm's segments, hands, jaws, a tilting head's),
+/// a box each, coloured by kind.
+pub const PIECES_ENTITY: &str = "world/machine";
 
 /// Entity path of the contact points and their force arrows.
 pub const CONTACT_FORCE_ENTITY: &str = "world/contact_force";

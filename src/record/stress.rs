@@ -5,7 +5,7 @@
 
 use rerun::{RecordingStreamResult, TimeColumn};
 
-use super::writer::{Writer, centreline_points};
+use super::writer::{Writer, centreline_points, from_first_row};
 use super::{Ending, Recorded};
 use crate::scene::SceneLayout;
 use crate::stress::{Fibre, StressSeries};
@@ -19,7 +19,7 @@ pub const YIELD_ENTITY: &str = "plots/stress/yield";
 /// The share of the yield line the worst station's peak |σ| reaches before the line is drawn.
 pub const YIELD_DRAWN_FROM: f64 = 0.5;
 
-pub use crate::stress::PIVOT_ENTITY;
+pub use crate::stress::PINS_ENTITY;
 
 /// Entity path of the peak's marker on the centreline.
 pub const PEAK_ENTITY: &str = "world/stress_peak";
@@ -203,16 +203,15 @@ impl Writer<'_> {
             .columns(per_frame)?;
         self.send_columns(super::CENTRELINE_ENTITY, times(), columns)?;
         let marker = rerun::Radius::new_scene_units(0.015 * layout.length_m as f32);
-        // The marker moves with the arm; its label, colour and size do not: logged once, at the
-        // first frame, they hold for the later ones.
+        // The marker moves with the arm; its label, colour and size do not: at the first frame,
+        // they hold for the later ones.
         let style = rerun::Points3D::update_fields()
             .with_labels([shading.label.clone()])
             .with_colors([rerun::Color::from_rgb(200, 0, 200)])
             .with_radii([marker])
-            .columns_of_unit_batches()?;
-        self.send_columns(PEAK_ENTITY, TimeColumn::new_duration_secs("sim_time", [first.t_s]), style)?;
+            .columns([1])?;
         let columns = rerun::Points3D::update_fields().with_positions(markers).columns_of_unit_batches()?;
-        self.send_columns(PEAK_ENTITY, times(), columns)?;
+        self.send_columns(PEAK_ENTITY, times(), columns.chain(from_first_row(style, frames.len())))?;
         self.legend(shading, layout)
     }
 
@@ -266,25 +265,26 @@ impl Writer<'_> {
             if let (Some(y), None) = (shading.worst_yield_pa, drawn_yield_pa) {
                 name += &format!(" (yield / stress_factor {:.0} MPa, off the scale)", 1e-6 * y);
             }
-            self.log_static(WORST_STATION_ENTITY, &rerun::SeriesLines::new().with_names([name]))?;
             let t = &self.run.series.t_s;
             let rows: Vec<usize> = (0..steps).filter(|&k| k == peak || self.keeps(k)).collect();
             let times = TimeColumn::new_duration_secs("sim_time", rows.iter().map(|&k| t[k]));
             let columns = rerun::Scalars::new(rows.iter().map(|&k| sigma[k])).columns_of_unit_batches()?;
-            self.send_columns(WORST_STATION_ENTITY, times, columns)?;
+            let named =
+                from_first_row(rerun::SeriesLines::update_fields().with_names([name]).columns([1])?, rows.len());
+            self.send_columns(WORST_STATION_ENTITY, times, columns.chain(named))?;
             if let Some(yield_pa) = drawn_yield_pa {
                 // Two points each: a constant needs no more.
                 let t = &self.run.series.t_s;
                 let ends = [t[0], t[t.len() - 1]];
                 for (side, sign) in [("tension", 1.0), ("compression", -1.0)] {
                     let entity = format!("{YIELD_ENTITY}/{side}");
-                    let style = rerun::SeriesLines::new()
+                    let style = rerun::SeriesLines::update_fields()
                         .with_names([format!("yield / stress_factor ({side})")])
-                        .with_colors([rerun::Color::from_rgb(220, 30, 30)]);
-                    self.log_static(&entity, &style)?;
+                        .with_colors([rerun::Color::from_rgb(220, 30, 30)])
+                        .columns([1])?;
                     let times = TimeColumn::new_duration_secs("sim_time", ends);
                     let columns = rerun::Scalars::new([sign * yield_pa; 2]).columns_of_unit_batches()?;
-                    self.send_columns(&entity, times, columns)?;
+                    self.send_columns(&entity, times, columns.chain(from_first_row(style, ends.len())))?;
                 }
             }
         }

@@ -2,6 +2,8 @@
 //! archetypes, and the magnified centreline's points, shared by the plots and the scene
 //! ([`super::content`]) and the sign-off's ([`super::stress`]).
 
+use rerun::external::arrow::array::ListArray;
+use rerun::external::arrow::buffer::{NullBuffer, OffsetBuffer};
 use rerun::log::{Chunk, ChunkComponents, ChunkId, RowId};
 use rerun::{AsComponents, RecordingStreamResult, SerializedComponentColumn, TimeColumn, TimePoint};
 
@@ -64,9 +66,8 @@ impl Writer<'_> {
     }
 
     /// The kept steps of several series of one kind as one entity, an instance per series, named
-    /// by `names` in the viewer's legend (static, so one name per series, not per row): two
-    /// chunks where an entity per series would take one each, and rerun's cost is per chunk.
-    /// `value(step, i)` is series i at `step`.
+    /// by `names` in the viewer's legend: one chunk where an entity per series would take one
+    /// each, and rerun's cost is per chunk. `value(step, i)` is series i at `step`.
     pub(super) fn send_named(
         &mut self,
         entity: &str,
@@ -77,9 +78,34 @@ impl Writer<'_> {
         let (rows, times) = self.kept_steps();
         let values = rows.iter().flat_map(|&k| (0..width).map(move |i| (k, i))).map(|(k, i)| value(k, i));
         let scalars = rerun::Scalars::new(values).columns(std::iter::repeat_n(width, rows.len()))?;
-        self.send_columns(entity, times, scalars)?;
-        self.log_static(entity, &rerun::SeriesLines::new().with_names(names.iter().map(String::as_str)))
+        let names =
+            rerun::SeriesLines::update_fields().with_names(names.iter().map(String::as_str)).columns([width])?;
+        self.send_columns(entity, times, scalars.chain(from_first_row(names, rows.len())))
     }
+}
+
+/// A style's columns (`style`, each one row: `update_fields()…columns([width])`) held from the
+/// first of `rows` rows: the later rows null, which the viewer reads as no data (it keeps the
+/// first row's), where an empty row would clear them. A series' name or a marker's label, colour
+/// and size then go in the chunk of the values they style, not in a static chunk of their own.
+pub(super) fn from_first_row(
+    style: impl IntoIterator<Item = SerializedComponentColumn>,
+    rows: usize,
+) -> Vec<SerializedComponentColumn> {
+    if rows == 0 {
+        return Vec::new();
+    }
+    style
+        .into_iter()
+        .map(|mut column| {
+            let (field, offsets, values, _) = column.list_array.into_parts();
+            let width = offsets.last().copied().unwrap_or(0);
+            let offsets = std::iter::once(0).chain(std::iter::repeat_n(width, rows)).collect::<Vec<i32>>();
+            let held = NullBuffer::from((0..rows).map(|r| r == 0).collect::<Vec<bool>>());
+            column.list_array = ListArray::new(field, OffsetBuffer::new(offsets.into()), values, Some(held));
+            column
+        })
+        .collect()
 }
 
 /// The magnified centreline of `frame`, world points.

@@ -27,7 +27,7 @@ use crate::scene::{Scene, Side as PairSide};
 use crate::sensor::probe::ArmState;
 
 pub use crate::robot::{SegmentChecks, YieldSource, YieldStrength};
-pub use channels::PIVOT_ENTITY;
+pub use channels::PINS_ENTITY;
 pub use fibres::{Fibre, Fibres};
 pub use recovery::{SectionRecovery, Station};
 pub use summary::{FatigueSummary, PinSummary, Readings, SignOff, StressSummary, sign_off, sign_off_run};
