@@ -40,9 +40,6 @@ enum Command {
         /// Scenario file.
         #[arg(default_value = "scenarios/default.toml")]
         scenario: PathBuf,
-        /// Override the model: rigid, modal(N) or fe.
-        #[arg(long, value_parser = parse_fidelity)]
-        model: Option<Fidelity>,
         #[command(flatten)]
         overrides: Overrides,
         /// Folder for the recording and the summary.
@@ -241,14 +238,14 @@ fn parse_viewer_url(s: &str) -> Result<String, String> {
 fn main() -> Result<()> {
     exit_quietly_on_closed_pipe();
     match Cli::parse().command {
-        Command::Run { scenario, model, overrides, out, no_record, record_rate, connect, spawn, csv } => {
+        Command::Run { scenario, overrides, out, no_record, record_rate, connect, spawn, csv } => {
             let viewer = match (connect, spawn) {
                 (Some(url), _) => Some(Viewer::Connect(url)),
                 (None, true) => Some(Viewer::Spawn),
                 (None, false) => None,
             };
             let options = RunOptions {
-                fidelity: model,
+                fidelity: overrides.model,
                 record_rate_hz: record_rate,
                 capture_frames: !no_record || viewer.is_some(),
                 ..RunOptions::default()
@@ -437,8 +434,7 @@ fn check(
     let mut failed = 0;
     let mut report = Vec::new();
     for path in &scenarios {
-        cli::overrides::note_old_spellings(path);
-        let scenario = Scenario::load(path)?;
+        let scenario = Overrides { model, ..Overrides::default() }.load(path)?;
         let name = scenario.model.name.clone();
         let (summary, _) = run(&scenario.model, model).with_context(|| format!("{}: running", path.display()))?;
         let file = baseline_path(baselines, &name);

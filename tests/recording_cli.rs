@@ -130,6 +130,26 @@ fn run_and_check_take_their_overrides_through_the_scenarios_checks() {
     assert!(!out.status.success() && stdout.contains("model") && stdout.contains("modal(2)"), "{stdout}");
 }
 
+/// `--model` reaches an actuated scenario's checks as `--step` does: its closed loop's poles, and
+/// with them the RK4 step it allows, are the requested model's. `hydraulic.toml` (modal(5), its
+/// fastest coupled pole about 1418 rad/s: RK4's limit |λ| dt <= 2.785 allows about 1.9 ms) runs
+/// modal(3) at 2.5 ms, whose poles are slower, and refuses modal(8) there, whose are faster.
+#[test]
+fn the_model_override_reaches_the_actuators_checks() {
+    let run = |model: &str| {
+        pipearm(&["run", "scenarios/hydraulic.toml", "--no-record", "--step", "0.0025", "--model", model])
+    };
+    let out = run("modal(3)");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("modal(3)") && stdout.contains("steps of 0.0025 s"), "{stdout}");
+    let out = run("modal(8)");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let fastest = stderr.split("fastest ").nth(1).and_then(|s| s.split(' ').next()).and_then(|s| s.parse::<f64>().ok());
+    assert!(!out.status.success() && stderr.contains("time.step_s"), "{stderr}");
+    assert!(fastest.is_some_and(|w| w * 0.0025 > 2.785), "{stderr}");
+}
+
 /// One spelling per idea: `kind` chooses the variant in every table. A scenario written with the
 /// old spellings (`[drive] profile`, `[integrator] method`, `[contact] method`) runs the same,
 /// with a note naming each old key and the key it was read as.

@@ -15,7 +15,7 @@ pub fn compare_command(
     options: pipearm::compare::CompareOptions,
     out: &Path,
 ) -> Result<()> {
-    let scenario = Scenario::load(path)?;
+    let scenario = super::overrides::Overrides { model: options.fidelity, ..Default::default() }.load(path)?;
     let measured = pipearm::measured::read(measured)?;
     let model = &scenario.model;
     let compared = pipearm::compare::compare(model, &measured, &options)?;

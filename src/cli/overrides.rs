@@ -1,16 +1,20 @@
-//! What `pipearm run` and `pipearm check` may override of a scenario on the command line, applied
-//! to the file's own text before it is checked and resolved: the scenario's checks (an explicit
-//! integrator's stable step, an actuator's loop at the step) see the values that will run.
+//! What `pipearm run`, `check` and `compare` may override of a scenario on the command line,
+//! applied to the file's own text before it is checked and resolved: the scenario's checks (an
+//! explicit integrator's stable step, an actuator's loop at the step and at the model's poles)
+//! see the values that will run.
 
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use pipearm::arm::Fidelity;
-use pipearm::scenario::Scenario;
+use pipearm::scenario::{ModelSpec, Scenario};
 
 /// Command-line overrides of a scenario.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct Overrides {
+    /// Override the model: rigid, modal(N) or fe (`[model]`).
+    #[arg(long, value_parser = parse_fidelity)]
+    pub model: Option<Fidelity>,
     /// Override the time step around contact, s (`[time] step_s`).
     #[arg(long, value_name = "SECONDS")]
     pub step: Option<f64>,
@@ -25,6 +29,13 @@ impl Overrides {
     pub fn load(&self, path: &Path) -> Result<Scenario> {
         note_old_spellings(path);
         let mut spec = Scenario::read_spec(path)?;
+        if let Some(fidelity) = self.model {
+            spec.model = match fidelity {
+                Fidelity::Rigid => ModelSpec::Rigid,
+                Fidelity::Modal { modes } => ModelSpec::Modal { modes },
+                Fidelity::Fe => ModelSpec::Fe,
+            };
+        }
         if let Some(step) = self.step {
             if !(step.is_finite() && step > 0.0) {
                 bail!("--step = {step}: allowed a step > 0 s");
