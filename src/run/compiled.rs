@@ -33,7 +33,7 @@ impl<'a> CompiledModel<'a> {
     /// kept from earlier compilations that it shares (the beam, its modes, the reduced arm).
     pub fn new(model: &'a Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<Self, ArmError> {
         let arm = crate::select::compile_arm(model, fidelity, compiler)?;
-        let string_frequencies_hz = string_frequencies_hz(model, &arm, compiler)?;
+        let string_frequencies_hz = string_frequencies_hz(model, &arm)?;
         let pair_names = crate::scene::pair_names(model);
         let mut compiled = CompiledModel { model, arm, channels: Vec::new(), pair_names, string_frequencies_hz };
         compiled.channels = super::channels(model, compiled.modal_dofs());
@@ -47,13 +47,15 @@ impl<'a> CompiledModel<'a> {
 }
 
 /// [`CompiledModel::string_frequencies_hz`] of `model` with its arm compiled as `arm`.
-fn string_frequencies_hz(model: &Model, arm: &CompiledArm, compiler: &Compiler) -> Result<Vec<f64>, ArmError> {
+fn string_frequencies_hz(model: &Model, arm: &CompiledArm) -> Result<Vec<f64>, ArmError> {
     if model.payload.string().is_none() {
         return Ok(Vec::new());
     }
     if let Some(modes) = arm.model.beam.member_modes() {
         return Ok(modes.frequencies_hz());
     }
-    let fe = compiler.beam(&model.beam_spec_with_string(Some(Fidelity::Fe))?)?;
-    Ok(fe.beam().member_modes().map(|m| m.frequencies_hz()).unwrap_or_default())
+    // The fe string's fixed-interface modes only: the beam's own clamped modes, which the
+    // compiler would solve with it, are not needed for them.
+    let fe = crate::beam::BeamModel::new(model.beam_spec_with_string(Some(Fidelity::Fe))?)?;
+    Ok(fe.member_modes().map(|m| m.frequencies_hz()).unwrap_or_default())
 }
