@@ -20,8 +20,9 @@
 //!     modes leave there added back as a spring in series with the oil column, three modes do
 //!     on the shipped arm, as under a servo: docs/drives.md).
 //!
-//!   then as many more modes as the modal truncation bound ([`TruncationBound`]) needs to come
-//!   within the budget;
+//!   then as many more modes as the budget needs: measured on the arm's linear equations run
+//!   through the drive ([`linear_run`]) where the hub follows its drive and nothing strikes the
+//!   arm, else the modal truncation bound ([`TruncationBound`]);
 //! - **fe** never by default: it is the reference.
 //!
 //! `tests/auto_model.rs` holds the choice within its budget of fe on every shipped scenario.
@@ -39,6 +40,7 @@ use crate::drive::MotionLaw;
 use crate::model::{Dampener, Model};
 
 mod budget;
+pub mod linear_run;
 pub use budget::TruncationBound;
 
 /// The fidelity chosen and why.
@@ -113,7 +115,8 @@ pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Resu
 
 /// Picks the cheapest fidelity the model needs, given its beam and clamped modes: the modes the
 /// scene's band (and an actuator's coupled frequencies) need as a floor, then as many more as
-/// the modal truncation's bound ([`TruncationBound`]) needs to be within the model's tolerance.
+/// the model's tolerance needs: on a linear run through the drive ([`linear_run`]) where it
+/// applies, else by the modal truncation's bound ([`TruncationBound`]).
 /// Never rigid: a rigid arm has no tip deflection, a headline quantity.
 pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
     let g = model.physics.gravity_m_s2;
@@ -133,10 +136,63 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
     }
     let floor = n.max(1);
+    let (chosen, fraction, basis) = if linear_run::applies(model) {
+        by_linear_run(model, beam, modes, floor, &mut reasons)
+    } else {
+        by_bound(model, beam, modes, floor, &mut reasons)?
+    };
+    Ok(Choice {
+        fidelity: Fidelity::Modal { modes: chosen },
+        reason: reasons.join("; "),
+        expected: Some(ExpectedError { fraction, basis, floor_modes: floor }),
+    })
+}
+
+/// The modes from `floor` the budget needs, measured on a linear run through the drive
+/// ([`linear_run`]): the count, its expected error and what that is on; the reason in `reasons`.
+fn by_linear_run(
+    model: &Model,
+    beam: &BeamModel,
+    modes: &ModalBasis,
+    floor: usize,
+    reasons: &mut Vec<String>,
+) -> (usize, f64, String) {
+    let budget = format!("{:.2} %", 100.0 * model.tolerance);
+    let run = linear_run::LinearRun::new(model, beam, modes);
+    let (chosen, errors) = linear_run::modes_within(&run, floor, model.tolerance);
+    let fraction = errors.last().copied().unwrap_or(0.0);
+    let more = linear_run::JUDGED_BEYOND;
+    reasons.push(if chosen == floor {
+        format!(
+            "at that floor its peak tip deflection, run linearly through the drive, is {:.2} % from that with \
+             {more} modes more, within {budget}",
+            100.0 * fraction
+        )
+    } else {
+        format!(
+            "{chosen} mode(s) bring its peak tip deflection, run linearly through the drive, from {:.2} % to \
+             {:.2} % from that with {more} modes more, within {budget}",
+            100.0 * errors[0],
+            100.0 * fraction
+        )
+    });
+    let basis = format!("peak tip deflection: against {more} modes more, run linearly through the drive");
+    (chosen, fraction, basis)
+}
+
+/// The modes from `floor` the budget needs by the modal truncation bound ([`TruncationBound`]):
+/// the count, its expected error and what that is on; the reason in `reasons`.
+fn by_bound(
+    model: &Model,
+    beam: &BeamModel,
+    modes: &ModalBasis,
+    floor: usize,
+    reasons: &mut Vec<String>,
+) -> Result<(usize, f64, String), BeamError> {
+    let budget = format!("{:.2} %", 100.0 * model.tolerance);
     let bound = TruncationBound::new(model, beam, modes)?;
     let chosen = bound.modes_within(floor, modes.len(), model.tolerance);
     let (fraction, quantity) = bound.error(chosen);
-    let budget = format!("{:.2} %", 100.0 * model.tolerance);
     reasons.push(if chosen == floor {
         format!("at that floor the truncation bound is {:.2} % ({quantity}), within {budget}", 100.0 * fraction)
     } else {
@@ -147,11 +203,7 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         )
     });
     let basis = format!("{quantity}: the modes left out, answering quasi-statically (modal truncation bound)");
-    Ok(Choice {
-        fidelity: Fidelity::Modal { modes: chosen },
-        reason: reasons.join("; "),
-        expected: Some(ExpectedError { fraction, basis, floor_modes: floor }),
-    })
+    Ok((chosen, fraction, basis))
 }
 
 /// What a scene excites: the highest frequency (Hz), the clamped modes below it, and why.
