@@ -107,7 +107,7 @@ impl<'a> LinearRun<'a> {
         }
     }
 
-    /// The modes the reference keeps.
+    /// The most modes a run keeps.
     pub fn most_modes(&self) -> usize {
         self.omegas.len()
     }
@@ -118,9 +118,9 @@ impl<'a> LinearRun<'a> {
         let h = self.model.time.step_s;
         let (w, c, tip) = (&self.omegas[..n], &self.rates[..n], &self.tip.as_slice()[..n]);
         let spin = self.spin.view((0, 0), (n, n)).into_owned();
-        let load = |i: usize, [accel, gs, gc, _]: [f64; 4]| {
-            -accel * self.inertia[i] - gs * self.axial[i] - gc * self.transverse[i]
-        };
+        let (inertia, axial, transverse) =
+            (&self.inertia.as_slice()[..n], &self.axial.as_slice()[..n], &self.transverse.as_slice()[..n]);
+        let load = |i: usize, [accel, gs, gc, _]: [f64; 4]| -accel * inertia[i] - gs * axial[i] - gc * transverse[i];
         // Newmark's matrix A + θ̇² B: A diagonal, A^-1/2 B A^-1/2 = Q Λ Qᵀ.
         let a: Vec<f64> = (0..n).map(|i| (1.0 + 0.5 * h * c[i] + 0.25 * h * h * w[i] * w[i]).sqrt()).collect();
         let eigen = DMatrix::from_fn(n, n, |i, j| 0.25 * h * h * spin[(i, j)] / (a[i] * a[j])).symmetric_eigen();
@@ -137,19 +137,17 @@ impl<'a> LinearRun<'a> {
         let (mut v, mut acc, mut rhs, mut z) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
         let mut peak = dot(tip, &x).abs();
-        let (inertia, axial, transverse) =
-            (&self.inertia.as_slice()[..n], &self.axial.as_slice()[..n], &self.transverse.as_slice()[..n]);
         let inverse_a: Vec<f64> = a.iter().map(|a| 1.0 / a).collect();
         let (half_h, quarter_h2) = (0.5 * h, 0.25 * h * h);
-        for &[accel, gs, gc, spin2] in &self.drive[1..] {
+        for &at in &self.drive[1..] {
+            let spin2 = at[3];
             // The predicted displacement, in x.
             for i in 0..n {
                 x[i] += h * v[i] + quarter_h2 * acc[i];
             }
             for (i, row) in spin.as_slice().chunks_exact(n).enumerate() {
-                let load = -accel * inertia[i] - gs * axial[i] - gc * transverse[i];
                 let held = c[i] * (v[i] + half_h * acc[i]) + w[i] * w[i] * x[i] + spin2 * dot(row, &x);
-                rhs[i] = (load - held) * inverse_a[i];
+                rhs[i] = (load(i, at) - held) * inverse_a[i];
             }
             // (A + θ̇² B) next = rhs: z = (I + θ̇² Λ)⁻¹ Qᵀ A^-1/2 rhs, next = A^-1/2 Q z.
             for ((z, column), l) in z.iter_mut().zip(columns.chunks_exact(n)).zip(lambda.iter()) {
