@@ -42,6 +42,26 @@ fn read_back(path: &Path, wanted: &str) -> (BTreeSet<String>, Vec<f64>, Vec<f64>
     (paths, values, times)
 }
 
+/// The trace names of `wanted`'s series, in the chunk of its values: those of its first row, and
+/// how many rows after it are null (no data: the viewer keeps the first row's names).
+fn trace_names(path: &Path, wanted: &str) -> (Vec<String>, usize) {
+    use arrow::array::Array;
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
+        let re_log_types::LogMsg::ArrowMsg(_, arrow) = msg.unwrap() else { continue };
+        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+        let names = chunk.component_descriptors().map(|d| d.component).find(|c| c.as_str() == "SeriesLines:names");
+        let (true, Some(names)) = (chunk.entity_path().to_string().trim_start_matches('/') == wanted, names) else {
+            continue;
+        };
+        let first: Vec<String> =
+            chunk.iter_slices::<String>(names).next().unwrap().iter().map(|s| s.to_string()).collect();
+        let column = chunk.components().get_array(names).unwrap();
+        return (first, (1..column.len()).filter(|&row| column.is_null(row)).count());
+    }
+    panic!("no names for {wanted}")
+}
+
 #[test]
 fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
@@ -54,12 +74,14 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     assert_eq!(forces.len(), times.len(), "one scalar per row");
     // The elastic coordinates share one entity, a row per kept step holding every q in order.
     let (_, q, q_times) = read_back(&path, MODAL_ENTITY);
-    std::fs::remove_file(&path).ok();
     let n = series.modal_dofs;
     let kept: Vec<usize> = (0..series.t_s.len()).filter(|&k| series.keep[k]).collect();
     assert!(n > 1 && q_times.len() == kept.len(), "{n} coordinates, {} rows", q_times.len());
     let want: Vec<f64> = kept.iter().flat_map(|&k| series.modal_q[k * n..(k + 1) * n].iter().copied()).collect();
     assert_eq!(q, want, "the kept steps' coordinates, q1 first");
+    let names: Vec<String> = (1..=n).map(|i| format!("q{i}")).collect();
+    assert_eq!(trace_names(&path, MODAL_ENTITY), (names, kept.len() - 1), "the names at the first row only");
+    std::fs::remove_file(&path).ok();
     for entity in [
         force.as_str(),
         TIP_DEFLECTION_ENTITY,
