@@ -260,8 +260,8 @@ impl Cylinders {
 }
 
 /// How outputs number cylinder `k` (from 0) among `count`: a lone cylinder has no number
-/// (`actuator.rod_force`, `plots/pins/cylinder`), several are numbered from 1 in the URDF's
-/// order (`actuator.rod_force.2`, `plots/pins/cylinder_2`).
+/// (`actuator.rod_force`, the pin loads' trace `cylinder`), several are numbered from 1 in the
+/// URDF's order (`actuator.rod_force.2`, the trace `cylinder_2`).
 pub fn cylinder_number(k: usize, count: usize) -> Option<usize> {
     (count > 1).then_some(k + 1)
 }

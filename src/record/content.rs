@@ -181,7 +181,7 @@ impl Writer<'_> {
             .with_labels(layout.pads.iter().map(|p| p.0.clone()).collect::<Vec<_>>())
             .with_colors(layout.pads.iter().map(|_| rerun::Color::from_rgb(40, 40, 40)).collect::<Vec<_>>())
             .columns([layout.pads.len()])?;
-        // The fill mode is one value per row, not per box: its own partition, the same chunk.
+        // The fill mode is one value for all the boxes, not one per box: a partition of its own.
         let fill = rerun::Boxes3D::update_fields().with_many_fill_mode([rerun::FillMode::Solid]).columns([1])?;
         let columns = columns.chain(from_first_row(shapes.chain(fill), frames.len()));
         self.send_columns("world/pads", times(), columns)?;
@@ -363,7 +363,6 @@ fn findings(summary: &crate::run::RunSummary) -> Vec<(f64, String, &'static str)
     events
 }
 
-/// Piece indices grouped by name, in first-seen order (all elements of the arm in one entity).
 /// Each piece's colour: one per kind of piece (those of one name: the arm's segments, a hand, a
 /// jaw), in the order the kinds first appear, from a palette of distinct hues.
 fn piece_colours(layout: &SceneLayout) -> Vec<rerun::Color> {
