@@ -188,6 +188,17 @@ impl Default for ModelSpec {
     }
 }
 
+/// A fidelity set by hand (a command line's `--model`) as the file would give it.
+impl From<Fidelity> for ModelSpec {
+    fn from(fidelity: Fidelity) -> Self {
+        match fidelity {
+            Fidelity::Rigid => ModelSpec::Rigid,
+            Fidelity::Modal { modes } => ModelSpec::Modal { modes },
+            Fidelity::Fe => ModelSpec::Fe,
+        }
+    }
+}
+
 impl ModelSpec {
     /// Whether it leaves the choice to `auto` with the default budget.
     pub fn is_auto(&self) -> bool {

@@ -217,3 +217,24 @@ fn fit_on_the_command_line_writes_a_report_and_a_scenario_that_loads() {
     assert_eq!(stiffness, value);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The fit's `--model` and `--step` reach each run's scenario checks, as `run`'s do: on
+/// `hydraulic.toml` (its fastest coupled pole about 1418 rad/s at modal(5); RK4's limit
+/// |λ| dt <= 2.785) a run at 2.5 ms is taken at modal(3), whose poles are slower, and refused at
+/// modal(8), whose are faster, naming the step.
+#[test]
+fn the_fits_model_and_step_reach_the_scenarios_checks() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    let scenario = Scenario::load(&path).unwrap();
+    let keys = ["dampeners.0.law.stiffness".to_string()];
+    let at = |modes| {
+        let settings = RunSettings { fidelity: Some(Fidelity::Modal { modes }), step_s: Some(0.0025) };
+        let problem = Problem::new(&scenario, &keys, settings).unwrap();
+        let initial: Vec<f64> = problem.parameters.iter().map(|p| p.initial).collect();
+        problem.run_at(&initial)
+    };
+    let (summary, _) = at(3).unwrap();
+    assert_eq!(summary.model, "modal(3)");
+    let refused = at(8).map(|_| ()).unwrap_err().to_string();
+    assert!(refused.contains("time.step_s") && refused.contains("fastest"), "{refused}");
+}

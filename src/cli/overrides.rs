@@ -7,7 +7,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result, bail};
 use pipearm::arm::Fidelity;
-use pipearm::scenario::{ModelSpec, Scenario};
+use pipearm::scenario::Scenario;
 
 /// Command-line overrides of a scenario.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -30,11 +30,7 @@ impl Overrides {
         note_old_spellings(path);
         let mut spec = Scenario::read_spec(path)?;
         if let Some(fidelity) = self.model {
-            spec.model = match fidelity {
-                Fidelity::Rigid => ModelSpec::Rigid,
-                Fidelity::Modal { modes } => ModelSpec::Modal { modes },
-                Fidelity::Fe => ModelSpec::Fe,
-            };
+            spec.model = fidelity.into();
         }
         if let Some(step) = self.step {
             if !(step.is_finite() && step > 0.0) {

@@ -207,15 +207,20 @@ impl Problem {
 
     /// A run of the scenario with the parameters at `values`.
     pub fn run_at(&self, values: &[f64]) -> Result<(RunSummary, Series), FitError> {
-        let spec: ScenarioSpec = self.document_at(values)?.try_into().map_err(|e: toml::de::Error| {
+        let mut spec: ScenarioSpec = self.document_at(values)?.try_into().map_err(|e: toml::de::Error| {
             Box::new(ScenarioError::Parse { path: self.path.clone(), message: e.to_string() })
         })?;
-        let mut model = Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &self.compiler)
+        // Before the scenario's checks, as `run`'s overrides: an actuator's loop and the step it
+        // allows are checked at the model and step that run.
+        if let Some(step_s) = self.settings.step_s {
+            spec.time.step_s = step_s;
+        }
+        if let Some(fidelity) = self.settings.fidelity {
+            spec.model = fidelity.into();
+        }
+        let model = Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &self.compiler)
             .map_err(Box::new)?
             .model;
-        if let Some(step_s) = self.settings.step_s {
-            model.time.step_s = step_s;
-        }
         let options = RunOptions { fidelity: self.settings.fidelity, ..RunOptions::default() };
         run_reusing(&model, &options, &self.compiler)
             .map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
