@@ -75,9 +75,7 @@ fn check_budget(name: &str, s: &pipearm::model::Model, slack_on_cheaper: f64) ->
     } else if modes == 1 {
         1.0
     } else {
-        let linear = pipearm::select::linear_run::LinearRun::new(s, &beam, &clamped);
-        let judge = linear.peak_tip_m(modes - 1 + pipearm::select::linear_run::JUDGED_BEYOND);
-        (linear.peak_tip_m(modes - 1) - judge).abs() / judge
+        pipearm::select::linear_run::LinearRun::new(s, &beam, &clamped).error(modes - 1).unwrap_or(0.0)
     };
     let shown = format!(
         "{} (expected {})",

@@ -11,21 +11,28 @@ use pipearm::record::{
 use pipearm::run::{RunOptions, run_with};
 use pipearm::scenario::Scenario;
 
+/// The recording store's chunks in `path`, in the order of the file, each with its entity path
+/// (without the leading `/`).
+fn recording_chunks(path: &Path) -> Vec<(String, re_chunk::Chunk)> {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut chunks = Vec::new();
+    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
+        let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
+        if store.kind() == re_log_types::StoreKind::Recording {
+            let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+            chunks.push((chunk.entity_path().to_string().trim_start_matches('/').to_string(), chunk));
+        }
+    }
+    chunks
+}
+
 /// Every entity path of the recording store, and the scalars of `wanted` with their `sim_time`
 /// (s), one scalar per row.
 fn read_back(path: &Path, wanted: &str) -> (BTreeSet<String>, Vec<f64>, Vec<f64>) {
-    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
     let mut paths = BTreeSet::new();
     let mut values = Vec::new();
     let mut times = Vec::new();
-    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
-        let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
-        if store.kind() != re_log_types::StoreKind::Recording {
-            continue;
-        }
-        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
-        let entity = chunk.entity_path().to_string();
-        let entity = entity.trim_start_matches('/').to_string();
+    for (entity, chunk) in recording_chunks(path) {
         let timeline = chunk.timelines().values().find(|t| t.timeline().name().as_str() == "sim_time");
         // A static chunk (a series' style) has no times and no scalars.
         if let (true, Some(timeline)) = (entity == wanted, timeline) {
@@ -46,14 +53,9 @@ fn read_back(path: &Path, wanted: &str) -> (BTreeSet<String>, Vec<f64>, Vec<f64>
 /// how many rows after it are null (no data: the viewer keeps the first row's names).
 fn trace_names(path: &Path, wanted: &str) -> (Vec<String>, usize) {
     use arrow::array::Array;
-    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
-    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
-        let re_log_types::LogMsg::ArrowMsg(_, arrow) = msg.unwrap() else { continue };
-        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+    for (entity, chunk) in recording_chunks(path) {
         let names = chunk.component_descriptors().map(|d| d.component).find(|c| c.as_str() == "SeriesLines:names");
-        let (true, Some(names)) = (chunk.entity_path().to_string().trim_start_matches('/') == wanted, names) else {
-            continue;
-        };
+        let (true, Some(names)) = (entity == wanted, names) else { continue };
         let first: Vec<String> =
             chunk.iter_slices::<String>(names).next().unwrap().iter().map(|s| s.to_string()).collect();
         let column = chunk.components().get_array(names).unwrap();

@@ -112,8 +112,17 @@ impl<'a> LinearRun<'a> {
         self.omegas.len()
     }
 
+    /// What modal(n) misses of the peak tip deflection: its run's against that with
+    /// [`JUDGED_BEYOND`] modes more, relative to the latter; `None` where that peak is below
+    /// [`NEGLIGIBLE_SHARE`] of the arm's sag laid level (an arm held upright, gravity along it:
+    /// nothing bends the tip, and its share would be round-off).
+    pub fn error(&self, n: usize) -> Option<f64> {
+        let reference = self.peak_tip_m(n + JUDGED_BEYOND);
+        (reference > NEGLIGIBLE_SHARE * self.level_sag_m).then(|| (self.peak_tip_m(n) - reference).abs() / reference)
+    }
+
     /// modal(n)'s largest |tip deflection| over the run (drive and settling), m.
-    pub fn peak_tip_m(&self, n: usize) -> f64 {
+    fn peak_tip_m(&self, n: usize) -> f64 {
         let n = n.clamp(1, self.most_modes());
         let h = self.model.time.step_s;
         let (w, c, tip) = (&self.omegas[..n], &self.rates[..n], &self.tip.as_slice()[..n]);
@@ -166,22 +175,15 @@ impl<'a> LinearRun<'a> {
 }
 
 /// The fewest modes from `floor` (at most [`REFERENCE_MODES`] less [`JUDGED_BEYOND`]) whose
-/// linear run's peak tip deflection is within `tolerance` of the run with [`JUDGED_BEYOND`]
-/// modes more, and the error of each count run on the way, from `floor`; `floor` itself, with
-/// no error, where the arm has too few modes to judge it or nothing bends its tip.
+/// [`LinearRun::error`] is within `tolerance`, and the error of each count run on the way, from
+/// `floor`; `floor` itself, with no error, where the arm has too few modes to judge it or nothing
+/// bends its tip.
 pub fn modes_within(run: &LinearRun, floor: usize, tolerance: f64) -> (usize, Vec<f64>) {
     let floor = floor.max(1);
     let last = run.most_modes().saturating_sub(JUDGED_BEYOND);
-    let mut peaks = vec![None; run.most_modes() + 1];
-    let mut peak = |n: usize| *peaks[n].get_or_insert_with(|| run.peak_tip_m(n));
     let mut errors = Vec::new();
     for n in floor..=last {
-        let reference = peak(n + JUDGED_BEYOND);
-        if reference <= NEGLIGIBLE_SHARE * run.level_sag_m {
-            // Nothing bends the tip (an arm held upright, gravity along it): no count is judged.
-            return (floor, Vec::new());
-        }
-        let error = (peak(n) - reference).abs() / reference;
+        let Some(error) = run.error(n) else { return (floor, Vec::new()) };
         errors.push(error);
         if error <= tolerance {
             return (n, errors);
