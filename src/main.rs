@@ -545,7 +545,7 @@ fn print_summary(path: &Path, s: &RunSummary) {
     println!("static w/l          1/{:.0}: {}", 1.0 / s.static_w_over_l, s.stiffness_class);
     println!("model choice        {}", s.model_reason);
     if let Some(e) = &s.model_expected_error {
-        println!("expected error      {:.2} % on {}", 100.0 * e.fraction, e.basis);
+        println!("expected error      {} on {}", pipearm::select::percent(e.fraction), e.basis);
     }
     let a = &s.motion_advice;
     if a.limit_deg_s2 > 0.0 {

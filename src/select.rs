@@ -119,8 +119,9 @@ pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Resu
 /// applies, else by the modal truncation's bound ([`TruncationBound`]).
 /// Never rigid: a rigid arm has no tip deflection, a headline quantity.
 pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
-    let g = model.physics.gravity_m_s2;
-    let class = StiffnessClass::of_ratio(beam.gravity_tip_deflection_m(g.max(1e-9))? / beam.length_m());
+    // The class of the arm as built (its sag under standard gravity), as the summary states it,
+    // whatever gravity the scene sets: a spin-up without gravity is not a rigid arm.
+    let w_over_l = beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2)? / beam.length_m();
     let Band { band_hz, modes: mut n, mut reasons } = excited_band(model, beam, modes)?;
     if let Some((k, coupled_hz)) = coupled_modes(model, beam, modes, band_hz).filter(|_| band_hz > 0.0) {
         let listed: Vec<String> = coupled_hz.iter().map(|f| format!("{f:.1}")).collect();
@@ -133,7 +134,11 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         n = k;
     }
     if n == 0 {
-        reasons.push(format!("{}: the arm's own deflection needs its first mode", class.describe()));
+        reasons.push(format!(
+            "the arm's own deflection needs its first mode (static w/l 1/{:.0}: {})",
+            1.0 / w_over_l,
+            StiffnessClass::of_ratio(w_over_l).describe()
+        ));
     }
     let floor = n.max(1);
     let (chosen, fraction, basis) = if linear_run::applies(model) {
@@ -157,23 +162,23 @@ fn by_linear_run(
     floor: usize,
     reasons: &mut Vec<String>,
 ) -> (usize, f64, String) {
-    let budget = format!("{:.2} %", 100.0 * model.tolerance);
     let run = linear_run::LinearRun::new(model, beam, modes);
     let (chosen, errors) = linear_run::modes_within(&run, floor, model.tolerance);
     let fraction = errors.last().copied().unwrap_or(0.0);
     let more = linear_run::JUDGED_BEYOND;
+    let verdict = against_budget(fraction, model.tolerance, "the most modes a linear run can judge");
     reasons.push(if chosen == floor {
         format!(
-            "at that floor its peak tip deflection, run linearly through the drive, is {:.2} % from that with \
-             {more} modes more, within {budget}",
-            100.0 * fraction
+            "at that floor its peak tip deflection, run linearly through the drive, is {} from that with \
+             {more} modes more, {verdict}",
+            percent(fraction)
         )
     } else {
         format!(
-            "{chosen} mode(s) bring its peak tip deflection, run linearly through the drive, from {:.2} % to \
-             {:.2} % from that with {more} modes more, within {budget}",
-            100.0 * errors[0],
-            100.0 * fraction
+            "{chosen} mode(s) bring its peak tip deflection, run linearly through the drive, from {} to {} \
+             from that with {more} modes more, {verdict}",
+            percent(errors[0]),
+            percent(fraction)
         )
     });
     let basis = format!("peak tip deflection: against {more} modes more, run linearly through the drive");
@@ -189,21 +194,36 @@ fn by_bound(
     floor: usize,
     reasons: &mut Vec<String>,
 ) -> Result<(usize, f64, String), BeamError> {
-    let budget = format!("{:.2} %", 100.0 * model.tolerance);
     let bound = TruncationBound::new(model, beam, modes)?;
     let chosen = bound.modes_within(floor, modes.len(), model.tolerance);
     let (fraction, quantity) = bound.error(chosen);
+    let verdict = against_budget(fraction, model.tolerance, "every clamped mode the beam has");
     reasons.push(if chosen == floor {
-        format!("at that floor the truncation bound is {:.2} % ({quantity}), within {budget}", 100.0 * fraction)
+        format!("at that floor the truncation bound is {} ({quantity}), {verdict}", percent(fraction))
     } else {
         format!(
-            "{chosen} mode(s) bring the truncation bound from {:.2} % to {:.2} % ({quantity}), within {budget}",
-            100.0 * bound.error(floor).0,
-            100.0 * fraction
+            "{chosen} mode(s) bring the truncation bound from {} to {} ({quantity}), {verdict}",
+            percent(bound.error(floor).0),
+            percent(fraction)
         )
     });
     let basis = format!("{quantity}: the modes left out, answering quasi-statically (modal truncation bound)");
     Ok((chosen, fraction, basis))
+}
+
+/// How an expected error `fraction` stands against the budget `tolerance`: "within" it, or, where
+/// the search stopped at its last count (`last`) above it, "beyond" it, so that no reason claims
+/// a budget the choice does not meet.
+fn against_budget(fraction: f64, tolerance: f64, last: &str) -> String {
+    let budget = percent(tolerance);
+    if fraction <= tolerance { format!("within {budget}") } else { format!("beyond {budget}: {last} do not meet it") }
+}
+
+/// A relative error as a percentage: two decimals, or two significant digits below 0.01 % (a
+/// budget of 1e-5 is not "0.00 %").
+pub fn percent(fraction: f64) -> String {
+    let p = 100.0 * fraction;
+    if p == 0.0 || p.abs() >= 0.01 { format!("{p:.2} %") } else { format!("{p:.1e} %") }
 }
 
 /// What a scene excites: the highest frequency (Hz), the clamped modes below it, and why.

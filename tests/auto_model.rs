@@ -249,6 +249,28 @@ fn a_tighter_budget_keeps_at_least_as_many_modes_and_holds() {
     }
 }
 
+/// A budget no count can meet is said so: on the shipped spin-up (a linear run judges it) at
+/// 1e-9 the search stops at the most modes it can judge, and the reason says the budget is not
+/// met where the expected error stands above it; at the shipped budget it says "within" and is.
+/// The class the reason gives is the arm's as built (its sag under standard gravity), as the
+/// summary's: the spin-up sets no gravity and is not a rigid arm.
+#[test]
+fn a_budget_no_count_meets_is_said_so() {
+    let mut s = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/spin_up.toml")).unwrap().model;
+    let shipped = pipearm::select::fidelity(&s).unwrap();
+    let expected = shipped.expected.clone().unwrap();
+    assert!(expected.fraction <= s.tolerance, "{expected:?}");
+    assert!(shipped.reason.contains("within 1.00 %"), "{}", shipped.reason);
+    assert!(!shipped.reason.contains("rigid"), "a 1/10 arm called rigid: {}", shipped.reason);
+    s.tolerance = 1e-9;
+    let unmet = pipearm::select::fidelity(&s).unwrap();
+    let expected = unmet.expected.clone().unwrap();
+    println!("spin_up at 1e-9: {} ({})", unmet.fidelity, unmet.reason);
+    assert!(expected.fraction > s.tolerance, "{expected:?}");
+    assert!(!unmet.reason.contains("within 1"), "{}", unmet.reason);
+    assert!(unmet.reason.contains("beyond 1.0e-7 %"), "{}", unmet.reason);
+}
+
 /// An arm held upright (gravity along it, no pad, no motion) is bent by nothing: the bound has
 /// nothing to judge and `auto` stays at its floor, one mode, where fe's tip moves by less than a
 /// hundredth of the arm's own sag laid level.
