@@ -20,7 +20,7 @@ import csv, random, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
 t = [float(r["t[s]"]) for r in rows]
 tip = [float(r["tip_deflection.transverse[m]"]) for r in rows]
-pad = [float(r["contact_force.vertical_stop[N]"]) for r in rows]
+pad = [float(r["contact_force.arm-vertical_stop[N]"]) for r in rows]
 def at(series, x):
     lo, hi = 0, len(t) - 1
     while hi - lo > 1:
@@ -31,7 +31,7 @@ def at(series, x):
 random.seed(20221)
 late_s, period_s = 0.007, 0.003
 with open(sys.argv[2], "w", newline="") as out:
-    out.write("t[s],tip_deflection.transverse[mm],contact_force.vertical_stop[kN]\n")
+    out.write("t[s],tip_deflection.transverse[mm],contact_force.arm-vertical_stop[kN]\n")
     k = 0
     while (k * period_s) <= t[-1] - late_s:
         clock = late_s + k * period_s   # the logger stamps each sample 7 ms late

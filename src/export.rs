@@ -23,7 +23,7 @@
 //! | `tip_velocity.axial[m/s]`, `tip_velocity.transverse[m/s]` | tip velocity relative to the hub frame |
 //! | `drive_torque[N*m]` | torque of the drive on the hub |
 //! | `actuator.tracking_error[rad]`, `actuator.command[N*m or 1]`, `actuator.rod_force[N]`, `actuator.pressure.cap[Pa]`, `actuator.pressure.rod[Pa]` | a servo's or hydraulic drive's channels ([`crate::actuator::channels`]; several cylinders numbered) |
-//! | `contact_force.<pair>[N]` | contact force, one column per pair (`<pad>`, `<structure>`, `string-<structure>`) |
+//! | `contact_force.<pair>[N]` | contact force, one column per pair, named as the summary names it (`arm-<pad>`, `arm-<structure>`, `string-<structure>`) |
 //! | `head.angle[rad]`, `head.drive_torque[N*m]` | a tilting head's angle on its hinge; a driven head's drive torque |
 //! | `string_slip[m]`, `jaw_sinking[m]` | friction clamp only |
 //! | `<sensor>.<channel>[unit]` | each sensor's channels ([`crate::sensor`]) |

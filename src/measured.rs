@@ -200,7 +200,7 @@ impl Measured {
                     header: column.header(),
                     message,
                 };
-                let Some(signal) = known.iter().find(|k| k.name == column.name) else {
+                let Some(signal) = known_as(known, &column.name) else {
                     let names: Vec<&str> = known.iter().map(|k| k.name).collect();
                     return Err(error(format!("no signal `{}`: allowed {}", column.name, names.join(", "))));
                 };
@@ -210,10 +210,30 @@ impl Measured {
                     return Err(error(format!("unit `{}`: allowed {}", column.unit, allowed.join(", "))));
                 };
                 let values = column.values.iter().map(|v| v * factor).collect();
-                Ok(Column { name: column.name.clone(), unit: signal.unit.into(), values })
+                Ok(Column { name: signal.name.into(), unit: signal.unit.into(), values })
             })
             .collect()
     }
+
+    /// The columns named in a former spelling that [`Measured::to_si`] reads under the signal's
+    /// name: (as written, as read).
+    pub fn renamed<'a>(&self, known: &[Known<'a>]) -> Vec<(String, &'a str)> {
+        self.columns
+            .iter()
+            .filter_map(|c| known_as(known, &c.name).filter(|k| k.name != c.name).map(|k| (c.name.clone(), k.name)))
+            .collect()
+    }
+}
+
+/// The signal of `known` a column named `name` is: by its name, or by the former spelling of an
+/// arm's contact pair, `contact_force.<pad>` for `contact_force.arm-<pad>` (the pair's name in
+/// the summary and the recording), still read.
+fn known_as<'k, 'a>(known: &'k [Known<'a>], name: &str) -> Option<&'k Known<'a>> {
+    let by = |wanted: &str| known.iter().find(|k| k.name == wanted);
+    by(name).or_else(|| {
+        let obstacle = name.strip_prefix("contact_force.")?;
+        by(&format!("contact_force.{}", crate::scene::pair_name(obstacle)))
+    })
 }
 
 #[cfg(test)]

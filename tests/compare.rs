@@ -215,3 +215,61 @@ fn a_compare_writes_the_run_with_the_measured_series_over_it() {
     assert!(rrd.windows(needle.len()).any(|w| w == needle), "no measured overlay in the recording");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A pair has one name: the summary's (`arm-<pad>`) is its force channel's in the tables and in
+/// a measured file. A measured column in the former spelling, `contact_force.<pad>`, is still
+/// read, as the same signal, and the command says so.
+#[test]
+fn a_pads_force_column_is_named_as_the_summary_names_the_pair() {
+    let model = Scenario::load(&manifest().join("scenarios/default.toml")).unwrap().model;
+    let (summary, _) = run(&model, Some(pipearm::arm::Fidelity::Modal { modes: 1 })).unwrap();
+    let defs = measurable_channels(&model);
+    for pair in &summary.pairs {
+        let name = format!("contact_force.{}", pair.pair);
+        assert!(defs.iter().any(|d| d.name == name), "no channel {name}");
+    }
+    let known: Vec<pipearm::measured::Known> =
+        defs.iter().map(|d| pipearm::measured::Known { name: &d.name, unit: d.unit }).collect();
+    let rows = "0,1\n0.1,2\n0.2,3\n0.3,4\n0.4,5\n";
+    let read =
+        |header: &str| pipearm::measured::parse(Path::new("rig.csv"), &format!("t[s],{header}\n{rows}")).unwrap();
+    for header in ["contact_force.arm-vertical_stop[kN]", "contact_force.vertical_stop[kN]"] {
+        let columns = read(header).to_si(&known).unwrap();
+        assert_eq!(columns[0].name, "contact_force.arm-vertical_stop", "{header}");
+        assert_eq!(columns[0].values, [1e3, 2e3, 3e3, 4e3, 5e3], "{header}");
+    }
+    assert!(read("contact_force.arm-vertical_stop[kN]").renamed(&known).is_empty());
+    assert_eq!(
+        read("contact_force.vertical_stop[kN]").renamed(&known),
+        [("contact_force.vertical_stop".to_string(), "contact_force.arm-vertical_stop")]
+    );
+    assert!(read("contact_force.nowhere[kN]").to_si(&known).is_err());
+
+    let dir = scratch("former-spelling");
+    let csv = dir.join("rig.csv");
+    let shipped = std::fs::read_to_string(manifest().join("measurements/rig.csv")).unwrap();
+    std::fs::write(&csv, shipped.replacen("contact_force.arm-vertical_stop", "contact_force.vertical_stop", 1))
+        .unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_pipearm"))
+        .args([
+            "compare",
+            "scenarios/default.toml",
+            "--model",
+            "modal(1)",
+            "--measured",
+            csv.to_str().unwrap(),
+            "--out",
+        ])
+        .arg(dir.join("out"))
+        .current_dir(manifest())
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    assert!(
+        stdout.contains("note: the column `contact_force.vertical_stop` is read as `contact_force.arm-vertical_stop`"),
+        "{stdout}"
+    );
+    assert!(stdout.lines().any(|l| l.starts_with("contact_force.arm-vertical_stop ")), "{stdout}");
+    std::fs::remove_dir_all(&dir).ok();
+}

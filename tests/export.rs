@@ -36,7 +36,7 @@ fn expected(series: &Series, pads: &[&str], keep_only: bool) -> Vec<(String, Vec
         ("drive_torque[N*m]".into(), series.drive_torque_n_m.clone()),
     ];
     for (pad, forces) in pads.iter().zip(&series.pad_force_n) {
-        columns.push((format!("contact_force.{pad}[N]"), forces.clone()));
+        columns.push((format!("contact_force.{}[N]", pipearm::scene::pair_name(pad)), forces.clone()));
     }
     if !series.head_angle_rad.is_empty() {
         columns.push(("head.angle[rad]".into(), series.head_angle_rad.clone()));
@@ -239,7 +239,7 @@ fn two_pads_give_one_force_column_each() {
     write_tables(&dir, "two", &series).unwrap();
     let csv = read_csv(&dir.join("two.steps.csv"));
     let forces: Vec<&str> = csv.iter().map(|c| c.0.as_str()).filter(|h| h.starts_with("contact_force")).collect();
-    assert_eq!(forces, ["contact_force.vertical_stop[N]", "contact_force.inner_stop[N]"]);
+    assert_eq!(forces, ["contact_force.arm-vertical_stop[N]", "contact_force.arm-inner_stop[N]"]);
     std::fs::remove_dir_all(&dir).ok();
     check_round_trip("two", &series, &["vertical_stop", "inner_stop"]);
 }

@@ -62,7 +62,7 @@ fn measurements_at(path: &Path, fidelity: Fidelity, step_s: f64) -> Vec<Signal> 
     truth.time.step_s = step_s;
     let (_, series) = run(&truth, Some(fidelity)).unwrap();
     let mut seed = 7;
-    ["tip_deflection.transverse", "contact_force.vertical_stop"]
+    ["tip_deflection.transverse", "contact_force.arm-vertical_stop"]
         .into_iter()
         .map(|name| {
             let values = simulated(&truth, name, &series);
@@ -173,10 +173,10 @@ fn fit_on_the_command_line_writes_a_report_and_a_scenario_that_loads() {
     *stiffness = TRUE_STIFFNESS;
     let (_, series) = run(&truth, None).unwrap();
     let tip = simulated(&truth, "tip_deflection.transverse", &series);
-    let force = simulated(&truth, "contact_force.vertical_stop", &series);
+    let force = simulated(&truth, "contact_force.arm-vertical_stop", &series);
     let dir = std::env::temp_dir().join(format!("pipearm-fit-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    let mut csv = String::from("t[s],tip_deflection.transverse[mm],contact_force.vertical_stop[kN]\n");
+    let mut csv = String::from("t[s],tip_deflection.transverse[mm],contact_force.arm-vertical_stop[kN]\n");
     for ((t, w), f) in series.t_s.iter().zip(&tip).zip(&force) {
         csv += &format!("{t},{},{}\n", 1e3 * w, 1e-3 * f);
     }

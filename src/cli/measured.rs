@@ -18,9 +18,10 @@ pub fn compare_command(
     let scenario = super::overrides::Overrides { model: options.fidelity, ..Default::default() }.load(path)?;
     let measured = pipearm::measured::read(measured)?;
     let model = &scenario.model;
+    let defs = pipearm::run::measurable_channels(model);
+    note_renamed(&measured, &defs);
     let compared = pipearm::compare::compare(model, &measured, &options)?;
     print!("{}", pipearm::compare::table(&compared.comparison));
-    let defs = pipearm::run::measurable_channels(model);
     let overlay =
         pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;
     let ending = Ending::Finished(&compared.summary);
@@ -48,6 +49,7 @@ pub fn fit_command(
     }
     let scenario = Scenario::load(path)?;
     let measured = pipearm::measured::read(measured)?;
+    note_renamed(&measured, &pipearm::run::measurable_channels(&scenario.model));
     let signals = pipearm::fit::signals_of(&measured, &scenario.model)?;
     let problem = pipearm::fit::Problem::new(&scenario, keys, settings)?;
     pipearm::export::check_folder(out).context("--out")?;
@@ -72,4 +74,15 @@ pub fn fit_command(
     std::fs::write(&fitted, text).with_context(|| format!("writing {}", fitted.display()))?;
     println!("wrote {} and {}", json.display(), fitted.display());
     Ok(())
+}
+
+/// A note for each measured column named in a former spelling, read under the signal's name.
+fn note_renamed(measured: &pipearm::measured::Measured, defs: &[pipearm::channel::Channel]) {
+    let known: Vec<pipearm::measured::Known> =
+        defs.iter().map(|d| pipearm::measured::Known { name: &d.name, unit: d.unit }).collect();
+    for (written, read) in measured.renamed(&known) {
+        println!(
+            "note: the column `{written}` is read as `{read}` (the pair's name, as the summary gives it: write it so)"
+        );
+    }
 }

@@ -232,13 +232,15 @@ fn unit_of(unit: &str) -> &'static str {
 pub fn table(c: &Comparison) -> String {
     let shift = c.shift_s.map_or("none".into(), |s| format!("{s:+.4} s (measured late by it)"));
     let mut out = format!("{} against {} ({}), shift {shift}\n", c.scenario, c.measured_file.display(), c.model);
+    // As wide as the longest signal's name (`contact_force.arm-<pad>` runs long).
+    let width = c.signals.iter().map(|s| s.signal.len()).fold(28, usize::max);
     out += &format!(
-        "{:<28} {:>8} {:>12} {:>12} {:>8} {:>9} {:>16} {:>20}\n",
+        "{:<width$} {:>8} {:>12} {:>12} {:>8} {:>9} {:>16} {:>20}\n",
         "signal", "unit", "peak meas", "peak sim", "error", "rms/peak", "f meas/sim Hz", "log dec meas/sim"
     );
     for s in &c.signals {
         out += &format!(
-            "{:<28} {:>8} {:>12.5e} {:>12.5e} {:>7.2}% {:>8.2}% {:>7.3} / {:<7.3} {:>9.4} / {:<9.4}\n",
+            "{:<width$} {:>8} {:>12.5e} {:>12.5e} {:>7.2}% {:>8.2}% {:>7.3} / {:<7.3} {:>9.4} / {:<9.4}\n",
             s.signal,
             s.unit,
             s.peak_measured,

@@ -26,11 +26,13 @@ pub fn force_entity(series_name: &str) -> String {
 }
 
 /// Each contact pair's force channel ([`crate::channel`]), in the scene's order:
-/// `contact_force.<series name>`, N, plotted at [`force_entity`]; a pad's is measurable.
+/// `contact_force.<pair>` ([`pair_name`]: `arm-<pad>`, `arm-<structure>`, `string-<structure>`,
+/// as the summary and the recording name the pair), N, plotted at [`force_entity`]; a pad's is
+/// measurable.
 pub fn pair_channels(model: &Model) -> Vec<Channel> {
     let pads = model.dampeners.len();
     let channel = |(k, name): (usize, String)| {
-        let channel = Channel::new(format!("contact_force.{name}"), "N", Reading::ContactForce(k))
+        let channel = Channel::new(format!("contact_force.{}", pair_name(&name)), "N", Reading::ContactForce(k))
             .plotted(force_entity(&name), 1.0);
         if k < pads { channel.measurable() } else { channel }
     };
