@@ -216,7 +216,7 @@ fn by_bound(
 /// a budget the choice does not meet.
 fn against_budget(fraction: f64, tolerance: f64, last: &str) -> String {
     let budget = percent(tolerance);
-    if fraction <= tolerance { format!("within {budget}") } else { format!("beyond {budget}: {last} do not meet it") }
+    if fraction <= tolerance { format!("within {budget}") } else { format!("beyond {budget}: not met with {last}") }
 }
 
 /// A relative error as a percentage: two decimals, or two significant digits below 0.01 % (a
