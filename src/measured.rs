@@ -186,6 +186,12 @@ pub struct Known<'a> {
     pub unit: &'a str,
 }
 
+impl<'a> From<&'a crate::channel::Channel> for Known<'a> {
+    fn from(channel: &'a crate::channel::Channel) -> Self {
+        Known { name: &channel.name, unit: channel.unit }
+    }
+}
+
 impl Measured {
     /// The columns in SI units, each checked against the `known` signals: an unknown name or a
     /// unit the signal cannot be written in is an error naming the column.

@@ -228,8 +228,7 @@ fn a_pads_force_column_is_named_as_the_summary_names_the_pair() {
         let name = format!("contact_force.{}", pair.pair);
         assert!(defs.iter().any(|d| d.name == name), "no channel {name}");
     }
-    let known: Vec<pipearm::measured::Known> =
-        defs.iter().map(|d| pipearm::measured::Known { name: &d.name, unit: d.unit }).collect();
+    let known: Vec<pipearm::measured::Known> = defs.iter().map(pipearm::measured::Known::from).collect();
     let rows = "0,1\n0.1,2\n0.2,3\n0.3,4\n0.4,5\n";
     let read =
         |header: &str| pipearm::measured::parse(Path::new("rig.csv"), &format!("t[s],{header}\n{rows}")).unwrap();

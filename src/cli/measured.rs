@@ -78,8 +78,7 @@ pub fn fit_command(
 
 /// A note for each measured column named in a former spelling, read under the signal's name.
 fn note_renamed(measured: &pipearm::measured::Measured, defs: &[pipearm::channel::Channel]) {
-    let known: Vec<pipearm::measured::Known> =
-        defs.iter().map(|d| pipearm::measured::Known { name: &d.name, unit: d.unit }).collect();
+    let known: Vec<pipearm::measured::Known> = defs.iter().map(pipearm::measured::Known::from).collect();
     for (written, read) in measured.renamed(&known) {
         println!(
             "note: the column `{written}` is read as `{read}` (the pair's name, as the summary gives it: write it so)"

@@ -133,7 +133,7 @@ pub struct Compared {
 /// runs the model and compares.
 pub fn compare(model: &Model, measured: &Measured, options: &CompareOptions) -> Result<Compared, CompareError> {
     let defs = measurable_channels(model);
-    let known: Vec<Known> = defs.iter().map(|d| Known { name: &d.name, unit: d.unit }).collect();
+    let known: Vec<Known> = defs.iter().map(Known::from).collect();
     let columns = measured.to_si(&known)?;
     // With the 3D scene, for the recording the measured series are drawn over.
     let run_options = RunOptions { fidelity: options.fidelity, capture_frames: true, ..RunOptions::default() };

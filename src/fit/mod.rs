@@ -118,8 +118,7 @@ pub struct RunSettings {
 /// gives (names and units, converted to SI).
 pub fn signals_of(measured: &crate::measured::Measured, model: &crate::model::Model) -> Result<Vec<Signal>, FitError> {
     let defs = crate::run::measurable_channels(model);
-    let known: Vec<crate::measured::Known> =
-        defs.iter().map(|d| crate::measured::Known { name: &d.name, unit: d.unit }).collect();
+    let known: Vec<crate::measured::Known> = defs.iter().map(crate::measured::Known::from).collect();
     let columns = measured.to_si(&known).map_err(Box::new)?;
     Ok(columns.into_iter().map(|c| Signal { name: c.name, t_s: measured.t_s.clone(), values: c.values }).collect())
 }
