@@ -1,7 +1,7 @@
 //! An `.rrd` file written on the caller's thread, with no `RecordingStream`: the one place that
 //! uses rerun's internal types (`re_log_encoding`, `re_log_types`, the blueprint archetypes of
 //! `re_sdk_types`, all through `rerun::external`), because rerun's public path to a file costs a
-//! third of the default run (docs/performance.md, "The recording's writer").
+//! third of the default run (docs/recording.md, "How it is written").
 //!
 //! A `RecordingStream` is made for live logging: a batcher, a forwarding and a file-writer thread
 //! per stream, LZ4 on every chunk, a second stream for the blueprint. The writer here writes what
