@@ -7,8 +7,8 @@
 //! truncated modes' share of its static value. For a load pattern b and an output row r over
 //! the FE DOFs, the static response is r K⁻¹ b = Σᵢ (r φᵢ)(φᵢᵀ b) / ωᵢ² over every clamped mode
 //! (mass-normalised, a complete basis of the arm's DOFs), and modal(n) keeps the first n terms.
-//! The loads are those the scene has, at their magnitudes: gravity at the drive's start and end
-//! angles, the hub's peak acceleration (the inertia S θ̈ of the rigid rotation), under a cylinder
+//! The loads are those the scene has, at their magnitudes: gravity at angles along the drive's
+//! path, the hub's peak acceleration (the inertia S θ̈ of the rigid rotation), under a cylinder
 //! each with the push at the pin that carries its moment, and a force at each pad's station. The
 //! outputs: the tip's deflection under each load (against the largest the scene's loads give),
 //! and each pad's force, whose error follows from the point flexibility f the truncation leaves out at the
@@ -78,11 +78,18 @@ impl TruncationBound {
         };
         let tip_modal = modes.shapes.tr_mul(&tip);
         let spin_stiffness = loads.iter().any(|l| l.rate_rad_s != 0.0).then(|| spin_stiffness(model, beam, modes));
+        // One factor per distinct rate: a lift's cruise shares one among its samples.
+        let mut factors: Vec<(f64, SpinningStatics)> = Vec::new();
         let tips: Vec<(String, Vec<f64>)> = loads
             .iter()
             .map(|load| {
-                let spinning = SpinningStatics::new(modes, spin_stiffness.as_ref(), load.rate_rad_s);
-                (load.name.clone(), tails(&spinning.terms(&tip_modal, &modes.shapes.tr_mul(&load.vector))))
+                let rate = load.rate_rad_s;
+                let index = factors.iter().position(|(r, _)| *r == rate).unwrap_or_else(|| {
+                    factors.push((rate, SpinningStatics::new(modes, spin_stiffness.as_ref(), rate)));
+                    factors.len() - 1
+                });
+                let terms = factors[index].1.terms(&tip_modal, &modes.shapes.tr_mul(&load.vector));
+                (load.name.clone(), tails(&terms))
             })
             .collect();
         // Each load's missing share is measured against the largest static tip deflection the
@@ -146,19 +153,38 @@ struct Load {
     rate_rad_s: f64,
 }
 
-/// The drive's states where the loads are judged: its start, its end, and where its
-/// acceleration peaks (sampled), that one at the drive's peak rate: the arm's answer to the
-/// acceleration rings on past it (a spin-up's peaks mid-way, at half its final rate, and judged
-/// there the bound let a 1 s spin-up run modal(1) 1.4 % from fe).
-fn judged_states(model: &Model) -> [crate::drive::DriveState; 3] {
-    let motion = &model.drive.motion;
-    let samples = 400;
-    let peak = (0..=samples)
-        .map(|i| motion.sample(motion.duration_s() * i as f64 / samples as f64))
-        .max_by(|a, b| a.accel_rad_s2.abs().total_cmp(&b.accel_rad_s2.abs()))
-        .unwrap_or_else(|| motion.sample(0.0));
-    let peak = crate::drive::DriveState { rate_rad_s: motion.peak_rate_rad_s(), ..peak };
-    [motion.sample(0.0), motion.sample(motion.duration_s()), peak]
+/// How many equal intervals of the drive's time gravity is judged at: an arm held at a
+/// cylinder's pin deflects most mid-lift, where the push's line has swung (on `hydraulic`,
+/// 3.3 mm at 25° against 1.2 mm at the start), not at either end.
+const PATH_INTERVALS: usize = 12;
+
+/// The drive's states where the loads are judged: along its path (its start and end among
+/// them) for gravity, and where its acceleration peaks (sampled), that one at the drive's peak
+/// rate: the arm's answer to the acceleration rings on past it (a spin-up's peaks mid-way, at
+/// half its final rate, and judged there the bound let a 1 s spin-up run modal(1) 1.4 % from
+/// fe).
+struct JudgedStates {
+    path: Vec<crate::drive::DriveState>,
+    peak: crate::drive::DriveState,
+}
+
+impl JudgedStates {
+    fn of(model: &Model) -> Self {
+        let motion = &model.drive.motion;
+        let at = |i: usize, count: usize| motion.sample(motion.duration_s() * i as f64 / count as f64);
+        let samples = 400;
+        let peak = (0..=samples)
+            .map(|i| at(i, samples))
+            .max_by(|a, b| a.accel_rad_s2.abs().total_cmp(&b.accel_rad_s2.abs()))
+            .unwrap_or_else(|| motion.sample(0.0));
+        let peak = crate::drive::DriveState { rate_rad_s: motion.peak_rate_rad_s(), ..peak };
+        JudgedStates { path: (0..=PATH_INTERVALS).map(|i| at(i, PATH_INTERVALS)).collect(), peak }
+    }
+
+    /// Whether `angle` is the drive's start or end angle, where the acceleration peaks.
+    fn at_an_end(&self, angle_rad: f64) -> bool {
+        [self.path[0], self.path[PATH_INTERVALS]].iter().any(|end| end.angle_rad == angle_rad)
+    }
 }
 
 /// The arm's static answer at a hub rate Ω, in the clamped modes' coordinates: a
@@ -204,11 +230,13 @@ fn spin_stiffness(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> nalgeb
     phi.transpose() * (stiffening * &beam.centrifugal_stiffness - &beam.translational_mass) * phi
 }
 
-/// The scene's loads on an arm its hub holds (an ideal drive or a servo), at the drive's start
-/// and end angles: gravity, and the hub's peak acceleration.
+/// The scene's loads on an arm its hub holds (an ideal drive or a servo): gravity along the
+/// drive's path, and the hub's peak acceleration.
 fn held_at_the_hub(model: &Model, beam: &BeamModel) -> Vec<Load> {
-    let [start, end, peak] = judged_states(model);
-    let mut loads: Vec<Load> = [start, end]
+    let states = JudgedStates::of(model);
+    let peak = states.peak;
+    let mut loads: Vec<Load> = states
+        .path
         .iter()
         .map(|at| Load {
             name: format!("gravity at {:.0}°", at.angle_rad.to_degrees()),
@@ -230,17 +258,18 @@ fn gravity_at(model: &Model, beam: &BeamModel, angle: f64) -> nalgebra::DVector<
     -model.physics.gravity_m_s2 * (s * &beam.axial_mass + c * &beam.transverse_mass)
 }
 
-/// The scene's loads on an arm cylinders hold, at the drive's start and end angles: gravity
-/// and the hub's acceleration, each with the cylinders' push that carries its moment about the
-/// hub. A cylinder holds the arm at its pin, not at the hub, and pushes mostly along the arm
+/// The scene's loads on an arm cylinders hold: gravity along the drive's path and the hub's
+/// acceleration at its start and end angles, each with the cylinders' push that carries its
+/// moment about the hub. A cylinder holds the arm at its pin, not at the hub, and pushes mostly along the arm
 /// at the pin's offset: the push bends the arm against the load, the two cancel in part at the
 /// tip, and the truncation's share of what is left is the larger. Several cylinders share the
 /// moment as their pressures do: each pushes in proportion to its cap area.
 fn held_at_the_pins(model: &Model, beam: &BeamModel, cylinders: &crate::actuator::Cylinders) -> Vec<Load> {
     let rotation = beam.arm_ride() * rigid_rotation(beam);
-    let [start, end, peak] = judged_states(model);
+    let states = JudgedStates::of(model);
+    let peak = states.peak;
     let mut loads = Vec::new();
-    for at in [start, end] {
+    for at in &states.path {
         let angle = at.angle_rad;
         let (s, c) = angle.sin_cos();
         let mut push = nalgebra::DVector::zeros(rotation.len());
@@ -257,10 +286,11 @@ fn held_at_the_pins(model: &Model, beam: &BeamModel, cylinders: &crate::actuator
         let lever = rotation.dot(&push);
         let deg = angle.to_degrees();
         let accel = peak.accel_rad_s2.abs() * &beam.coupling;
-        for (name, load, rate) in [
-            (format!("gravity at {deg:.0}°"), gravity_at(model, beam, angle), at.rate_rad_s),
-            (format!("the hub's peak acceleration at {deg:.0}°"), accel, peak.rate_rad_s),
-        ] {
+        let mut judged = vec![(format!("gravity at {deg:.0}°"), gravity_at(model, beam, angle), at.rate_rad_s)];
+        if states.at_an_end(angle) {
+            judged.push((format!("the hub's peak acceleration at {deg:.0}°"), accel, peak.rate_rad_s));
+        }
+        for (name, load, rate) in judged {
             let held = &load - (rotation.dot(&load) / lever) * &push;
             let pins = if cylinders.each.len() == 1 { "the cylinder's pin" } else { "the cylinders' pins" };
             loads.push(Load { name: format!("{name} held at {pins}"), vector: held, rate_rad_s: rate });
