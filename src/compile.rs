@@ -9,6 +9,11 @@
 //! the string's size, a damping ratio) compiles its own. Taken or compiled, the run's numbers
 //! are the same to the bit: the same inputs give the same matrices.
 //!
+//! `auto`'s choice of the arm's fidelity is kept the same way, under every key it reads (the
+//! robot, payload, drive, pads, structures, physics, time, integrator and tolerance): cases that
+//! differ only in what it does not read (the contact method, the sensors, the sign-off's factor)
+//! or not at all take it with its error estimate as made.
+//!
 //! What is kept is immutable once compiled (the running state lives in the scene), so the runs
 //! of every thread share it.
 
@@ -18,6 +23,8 @@ use std::sync::{Arc, Mutex};
 
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity};
 use crate::beam::{BeamError, BeamModel, BeamSpec, ModalBasis};
+use crate::choice::Choice;
+use crate::model::Model;
 use crate::robot::TiltingHead;
 
 /// How many compiled parts of each kind are kept: a sweep's cases arrive in cost order, not
@@ -43,6 +50,39 @@ struct ArmKey {
     fidelity: Fidelity,
     options: ArmOptions,
     head: Option<TiltingHead>,
+}
+
+/// What `auto`'s choice of the arm's fidelity reads: the beam it chose on, and the model's keys
+/// the band, the coupled frequencies and the error estimate read.
+#[derive(Debug, Clone, PartialEq)]
+struct ChoiceKey {
+    beam: BeamKey,
+    robot: crate::robot::Robot,
+    payload: crate::model::Payload,
+    drive: crate::model::Drive,
+    dampeners: Vec<crate::model::Dampener>,
+    structures: Vec<crate::model::Structure>,
+    physics: crate::model::PhysicsOptions,
+    time: crate::model::TimeOptions,
+    integrator: crate::integrate::IntegratorKind,
+    tolerance: f64,
+}
+
+impl ChoiceKey {
+    fn new(beam: &BeamKey, model: &Model) -> Self {
+        ChoiceKey {
+            beam: beam.clone(),
+            robot: model.robot.clone(),
+            payload: model.payload.clone(),
+            drive: model.drive.clone(),
+            dampeners: model.dampeners.clone(),
+            structures: model.structures.clone(),
+            physics: model.physics,
+            time: model.time,
+            integrator: model.integrator,
+            tolerance: model.tolerance,
+        }
+    }
 }
 
 /// The last [`KEPT`] values compiled, by what they were compiled from.
@@ -83,6 +123,7 @@ impl<K: PartialEq, V: Clone> Kept<K, V> {
 pub struct Compiler {
     beams: Kept<BeamKey, Arc<BuiltBeam>>,
     arms: Kept<ArmKey, Arc<ArmModel>>,
+    choices: Kept<ChoiceKey, Choice>,
 }
 
 /// How many beams and reduced arms a [`Compiler`] compiled (the rest it took as kept).
@@ -93,6 +134,8 @@ pub struct Compilations {
     pub beams: usize,
     /// Arms reduced to a fidelity.
     pub arms: usize,
+    /// `auto`'s choices of the arm's fidelity (each with its error estimate).
+    pub choices: usize,
 }
 
 /// A beam with the arm's clamped modes, as compiled, and what it was compiled from.
@@ -125,6 +168,7 @@ impl Compiler {
         Compilations {
             beams: self.beams.compiled.load(Ordering::Relaxed),
             arms: self.arms.compiled.load(Ordering::Relaxed),
+            choices: self.choices.compiled.load(Ordering::Relaxed),
         }
     }
 
@@ -150,6 +194,17 @@ impl Compiler {
         });
         let Ok(built) = built;
         CompiledBeam { key, built }
+    }
+
+    /// `auto`'s choice of the arm's fidelity for `model` on `compiled`, made by `choose` unless a
+    /// run with the same keys made it.
+    pub fn choice(
+        &self,
+        model: &Model,
+        compiled: &CompiledBeam,
+        choose: impl FnOnce() -> Result<Choice, BeamError>,
+    ) -> Result<Choice, BeamError> {
+        self.choices.get_or_compile(ChoiceKey::new(&compiled.key, model), choose)
     }
 
     /// The arm of `compiled` reduced to `fidelity` with `options`, with the robot's tilting

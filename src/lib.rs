@@ -15,6 +15,7 @@ pub mod beam;
 pub mod bench;
 pub mod capacity;
 pub mod channel;
+pub mod choice;
 pub mod compare;
 pub mod compile;
 pub mod contact;

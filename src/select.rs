@@ -41,38 +41,8 @@ use crate::model::{Dampener, Model};
 
 mod budget;
 pub mod linear_run;
+pub use crate::choice::{Choice, ExpectedError};
 pub use budget::TruncationBound;
-
-/// The fidelity chosen and why.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Choice {
-    /// The fidelity.
-    pub fidelity: Fidelity,
-    /// Why, in a sentence.
-    pub reason: String,
-    /// The error `auto` expects of it on the scene's headline quantities (`None` for a fidelity
-    /// set by hand).
-    pub expected: Option<ExpectedError>,
-}
-
-impl Choice {
-    /// A fidelity set by hand (`why`: where), with no estimate.
-    pub fn set(fidelity: Fidelity, why: &str) -> Self {
-        Choice { fidelity, reason: why.into(), expected: None }
-    }
-}
-
-/// The error a choice expects, relative, and on what it is based.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct ExpectedError {
-    /// The largest expected relative error of a headline quantity (0.01 = 1 %).
-    pub fraction: f64,
-    /// Which quantity, and the estimate it comes from.
-    pub basis: String,
-    /// The fewest modes the scene's band (and an actuator's coupled frequencies) need, the floor
-    /// the budget adds to; 0 for the string's estimate, which has no floor of its own.
-    pub floor_modes: usize,
-}
 
 impl Model {
     /// The beam description of the arm: the robot's links plus the payload, a held string at
@@ -104,12 +74,12 @@ pub fn fidelity(model: &Model) -> Result<Choice, BeamError> {
     }
 }
 
-/// [`fidelity`] with the model's beam and its clamped modes already built (a run builds them
-/// once for the choice and the arm).
-pub fn fidelity_for(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Choice, BeamError> {
+/// [`fidelity`] on the beam and clamped modes a run compiled, `auto`'s choice taken from
+/// `compiler` where a run with the same keys made it ([`Compiler::choice`]).
+fn fidelity_on(model: &Model, compiled: &CompiledBeam, compiler: &Compiler) -> Result<Choice, BeamError> {
     match model.fidelity {
         Some(fidelity) => Ok(Choice::set(fidelity, "set in the scenario")),
-        None => choose(model, beam, modes),
+        None => compiler.choice(model, compiled, || choose(model, compiled.beam(), compiled.modes())),
     }
 }
 
@@ -302,7 +272,7 @@ pub fn compile_arm(model: &Model, fidelity: Option<Fidelity>, compiler: &Compile
     };
     let arm = match fidelity {
         Some(fidelity) => Choice::set(fidelity, "set on the command line"),
-        None => fidelity_for(model, compiled.beam(), compiled.modes())?,
+        None => fidelity_on(model, &compiled, compiler)?,
     };
     let reduced = compiler.arm(&compiled, arm.fidelity, &model.arm_options(), model.robot.head.as_ref())?;
     let fastest_rad_s = fastest_rad_s(model, &reduced);

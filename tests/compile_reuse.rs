@@ -1,6 +1,6 @@
-//! Runs that share a `Compiler` take the beam and the reduced arm an earlier run compiled where
-//! their keys do not touch them, compile their own where they do, and give the numbers a run
-//! compiling everything itself gives, to the bit.
+//! Runs that share a `Compiler` take the beam, the reduced arm and `auto`'s choice an earlier
+//! run compiled where their keys do not touch them, compile their own where they do, and give
+//! the numbers a run compiling everything itself gives, to the bit.
 
 use std::path::Path;
 
@@ -29,23 +29,28 @@ fn runs_share_what_their_keys_leave_alone_and_match_runs_that_compile_it_themsel
     damped.robot.arm.damping_ratios = vec![0.03];
     let mut heavier_gripper = base.clone();
     heavier_gripper.robot.carried[0].mass_kg *= 1.5;
+    let mut judged_stricter = base.clone();
+    judged_stricter.checks.stress_factor = 1.5;
     let options = RunOptions::default();
     let compiler = Compiler::new();
-    let mut expected = Compilations { beams: 0, arms: 0 };
+    let mut expected = Compilations { beams: 0, arms: 0, choices: 0 };
     // The default holds its string flexibly: auto compiles the beam with a one-mode string to
-    // choose, then that beam keeping the modes it chose; then the reduced arm.
-    for (name, model, new_beams, new_arms) in [
-        ("default", &base, 2, 1),
-        ("the pad's gap doubled (the pad is no part of the beam)", &wider_gap, 0, 0),
-        ("damping 3 % (the beam's modes stand; the arm's damping does not)", &damped, 0, 1),
-        ("the gripper 50 % heavier (a mass on the beam)", &heavier_gripper, 2, 1),
-        ("default again", &base, 0, 0),
+    // choose, then that beam keeping the modes it chose; then the reduced arm. The arm's choice
+    // reads the pads and the damping (the band, the bound), not the sign-off's factor.
+    for (name, model, new_beams, new_arms, new_choices) in [
+        ("default", &base, 2, 1, 1),
+        ("the pad's gap doubled (the pad is no part of the beam)", &wider_gap, 0, 0, 1),
+        ("damping 3 % (the beam's modes stand; the arm's damping does not)", &damped, 0, 1, 1),
+        ("the gripper 50 % heavier (a mass on the beam)", &heavier_gripper, 2, 1, 1),
+        ("default again", &base, 0, 0, 0),
+        ("the sign-off's stress factor 1.5 (no part of the arm or its choice)", &judged_stricter, 0, 0, 0),
     ] {
         let (reusing, _) = run_reusing(model, &options, &compiler).unwrap();
         let (alone, _) = run_with(model, &options).unwrap();
         assert_eq!(numbers(&reusing), numbers(&alone), "{name}: the numbers moved");
         expected.beams += new_beams;
         expected.arms += new_arms;
+        expected.choices += new_choices;
         assert_eq!(compiler.compilations(), expected, "{name}");
     }
 }
@@ -84,5 +89,5 @@ fn a_compiled_model_steps_the_same_run_every_time() {
     assert!(first_series == second_series && first_series == alone_series, "the series differ");
     // The default's flexible string: two beams (auto's choice, then the run's) and one arm,
     // for both runs.
-    assert_eq!(compiler.compilations(), Compilations { beams: 2, arms: 1 }, "compiled once");
+    assert_eq!(compiler.compilations(), Compilations { beams: 2, arms: 1, choices: 1 }, "compiled once");
 }
