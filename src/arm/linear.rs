@@ -82,7 +82,11 @@ impl ArmSimulation {
         let mut jacobian = DMatrix::zeros(n, n);
         let (mut yp, mut plus, mut minus) = (y0.clone(), DVector::zeros(n), DVector::zeros(n));
         for j in 0..n {
-            let h = 1e-7 * y0[j].abs().max(1e-4);
+            // A state's 1e-7, and 1e-7 of its unit where it is smaller: the arm's rates reach
+            // ω² y over its stiffest DOFs (10¹⁰ s⁻² on an fe arm), and a smaller step lets their
+            // rounding into the slow poles (a growing one of 5372 rad/s on the fe arm under the
+            // servo at 1e-11), while the deflections at rest stay far above 1e-7 m.
+            let h = 1e-7 * y0[j].abs().max(1.0);
             yp[j] = y0[j] + h;
             self.linear_rates(&yp, &mut plus)?;
             yp[j] = y0[j] - h;
