@@ -31,15 +31,18 @@ fn lift_peak_tip_m(series: &Series) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// |x − r| relative to |r|.
+fn rel(x: f64, r: f64) -> f64 {
+    (x - r).abs() / r.abs().max(1e-12)
+}
+
 /// Largest relative difference of peak force and peak tip deflection.
 fn off(a: &RunSummary, reference: &RunSummary) -> f64 {
-    let rel = |x: f64, r: f64| (x - r).abs() / r.abs().max(1e-12);
     rel(peak_force(a), peak_force(reference)).max(rel(a.max_tip_deflection_m, reference.max_tip_deflection_m))
 }
 
 /// [`off`], and the lift's peak tip deflection before the first contact ([`lift_peak_tip_m`]).
 fn arm_off((a, a_series): &(RunSummary, Series), (reference, reference_series): &(RunSummary, Series)) -> f64 {
-    let rel = |x: f64, r: f64| (x - r).abs() / r.abs().max(1e-12);
     off(a, reference).max(rel(lift_peak_tip_m(a_series), lift_peak_tip_m(reference_series)))
 }
 

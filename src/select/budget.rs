@@ -180,11 +180,6 @@ impl JudgedStates {
         let peak = crate::drive::DriveState { rate_rad_s: motion.peak_rate_rad_s(), ..peak };
         JudgedStates { path: (0..=PATH_INTERVALS).map(|i| at(i, PATH_INTERVALS)).collect(), peak }
     }
-
-    /// Whether `angle` is the drive's start or end angle, where the acceleration peaks.
-    fn at_an_end(&self, angle_rad: f64) -> bool {
-        [self.path[0], self.path[PATH_INTERVALS]].iter().any(|end| end.angle_rad == angle_rad)
-    }
 }
 
 /// The arm's static answer at a hub rate Ω, in the clamped modes' coordinates: a
@@ -269,7 +264,7 @@ fn held_at_the_pins(model: &Model, beam: &BeamModel, cylinders: &crate::actuator
     let states = JudgedStates::of(model);
     let peak = states.peak;
     let mut loads = Vec::new();
-    for at in &states.path {
+    for (k, at) in states.path.iter().enumerate() {
         let angle = at.angle_rad;
         let (s, c) = angle.sin_cos();
         let mut push = nalgebra::DVector::zeros(rotation.len());
@@ -287,7 +282,8 @@ fn held_at_the_pins(model: &Model, beam: &BeamModel, cylinders: &crate::actuator
         let deg = angle.to_degrees();
         let accel = peak.accel_rad_s2.abs() * &beam.coupling;
         let mut judged = vec![(format!("gravity at {deg:.0}°"), gravity_at(model, beam, angle), at.rate_rad_s)];
-        if states.at_an_end(angle) {
+        // The acceleration peaks as the drive starts and stops: judged at its ends' angles.
+        if k == 0 || k == PATH_INTERVALS {
             judged.push((format!("the hub's peak acceleration at {deg:.0}°"), accel, peak.rate_rad_s));
         }
         for (name, load, rate) in judged {
