@@ -11,9 +11,9 @@ use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand};
 
 use pipearm::arm::Fidelity;
-use pipearm::record::{Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
+use pipearm::record::{BlueprintInAdvance, Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
-use pipearm::run::{RunOptions, RunSummary, run, run_partial};
+use pipearm::run::{CompiledModel, RunOptions, RunSummary, Series, run, run_compiled};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
@@ -307,14 +307,23 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     let started = std::time::Instant::now();
     let scenario = overrides.load(path)?;
     let model = &scenario.model;
-    let (result, series) = run_partial(model, &options, &scenario.compiler);
+    // The recording's blueprint is encoded on the second core while the run steps.
+    let (result, series, mut blueprint) = match CompiledModel::new(model, options.fidelity, &scenario.compiler) {
+        Ok(compiled) => {
+            let blueprint = outputs.files.map(|_| BlueprintInAdvance::start(&compiled, &options));
+            let (result, series) = run_compiled(&compiled, &options);
+            (result, series, blueprint)
+        }
+        Err(error) => (Err(error.into()), Series::default(), None),
+    };
     let name = &model.name;
     let summary = match result {
         Ok(summary) => summary,
         Err(error @ SceneError::Diverged { t_s, .. }) if options.capture_frames => {
             let message = error.to_string();
             let ending = Ending::Diverged { scenario: name, t_s, message: &message };
-            record_divergence(&outputs, name, &Recorded { series: &series, ending, overlay: &[] });
+            let run = Recorded { series: &series, ending, overlay: &[] };
+            record_divergence(&outputs, name, &run, blueprint.take());
             return Err(anyhow::Error::new(error).context(format!("{}: running", path.display())));
         }
         Err(error) => return Err(error).with_context(|| format!("{}: running", path.display())),
@@ -325,7 +334,7 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
         let started = std::time::Instant::now();
         let rrd = out.join(format!("{name}.rrd"));
         let json = out.join(format!("{name}.summary.json"));
-        save_recording(&rrd, &run)?;
+        save_recording(&rrd, &run, blueprint.take())?;
         write_summary(&json, &summary)?;
         let bytes = std::fs::metadata(&rrd).map(|m| m.len()).unwrap_or(0);
         println!(
@@ -364,10 +373,10 @@ fn diverged_path(out: &Path, name: &str) -> PathBuf {
 
 /// Records a diverged run for inspection: its file and its stream. The divergence is the
 /// command's error; failing to record it is reported beside it.
-fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded) {
+fn record_divergence(outputs: &Outputs, name: &str, run: &Recorded, blueprint: Option<BlueprintInAdvance>) {
     if let Some(out) = outputs.files {
         let rrd = diverged_path(out, name);
-        match save_recording(&rrd, run) {
+        match save_recording(&rrd, run, blueprint) {
             Ok(()) => println!("wrote               {} (the run up to its divergence)", rrd.display()),
             Err(e) => eprintln!("{e}"),
         }

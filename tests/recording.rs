@@ -5,18 +5,23 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use pipearm::record::{
-    CENTRELINE_ENTITY, LEGEND_ENTITY, MODAL_ENTITY, PEAK_ENTITY, PIECES_ENTITY, PINS_ENTITY, TIP_DEFLECTION_ENTITY,
-    WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY, force_entity, write_recording,
+    ActuatorViews, BlueprintInAdvance, CENTRELINE_ENTITY, Ending, LEGEND_ENTITY, MODAL_ENTITY, PEAK_ENTITY,
+    PIECES_ENTITY, PINS_ENTITY, Recorded, RunViews, TIP_DEFLECTION_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM,
+    YIELD_ENTITY, force_entity, save_recording, write_recording,
 };
-use pipearm::run::{RunOptions, run_with};
+use pipearm::run::{CompiledModel, RunOptions, run_compiled, run_with};
 use pipearm::scenario::Scenario;
 
 /// The recording store's chunks in `path`, in the order of the file, each with its entity path
 /// (without the leading `/`).
 fn recording_chunks(path: &Path) -> Vec<(String, re_chunk::Chunk)> {
-    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    recording_chunks_of(&std::fs::read(path).unwrap())
+}
+
+/// The recording store's chunks in the file `bytes`, as [`recording_chunks`].
+fn recording_chunks_of(bytes: &[u8]) -> Vec<(String, re_chunk::Chunk)> {
     let mut chunks = Vec::new();
-    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
+    for msg in re_log_encoding::DecoderApp::decode_eager(bytes).unwrap() {
         let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
         if store.kind() == re_log_types::StoreKind::Recording {
             let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
@@ -117,13 +122,18 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     }
 }
 
-/// The file a run writes, decoded: every message.
+/// The file `pipearm run` writes, decoded: every message (its blueprint encoded while the run
+/// steps).
 fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) {
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
-    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+    let compiled = CompiledModel::new(&scenario.model, options.fidelity, &scenario.compiler).unwrap();
+    let blueprint = BlueprintInAdvance::start(&compiled, &options);
+    let (summary, series) = run_compiled(&compiled, &options);
+    let summary = summary.unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-blueprint-{}.rrd", std::process::id()));
-    write_recording(&path, &summary, &series).unwrap();
+    let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
+    save_recording(&path, &run, Some(blueprint)).unwrap();
     let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
     let messages = re_log_encoding::DecoderApp::decode_eager(file).unwrap().map(Result::unwrap).collect();
     std::fs::remove_file(&path).ok();
@@ -143,6 +153,7 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
             stores.push(s.info.store_id.clone());
         }
     }
+    // The recording's stream, then the blueprint's, activated last.
     assert_eq!(stores.iter().map(|s| s.kind()).collect::<Vec<_>>(), [StoreKind::Recording, StoreKind::Blueprint]);
     let activation = messages.iter().find_map(|m| match m {
         LogMsg::BlueprintActivationCommand(c) => Some(c.clone()),
@@ -193,6 +204,65 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
     assert!(!events.is_static(), "static events hide the timed ones in the viewer");
     let impacts: usize = summary.pairs.iter().map(|p| p.impacts.len()).sum();
     assert!(events.num_rows() >= 3 * impacts, "{} rows for {impacts} impacts", events.num_rows());
+}
+
+/// The file's footer indexes every chunk of the recording where it lies in the file, as `rerun rrd
+/// verify` checks: the blueprint's stream after it carries no footer whose offsets would count
+/// from its own start.
+#[test]
+fn the_footer_finds_every_chunk_of_the_recording_where_it_lies() {
+    use re_log_encoding::{Decodable as _, ToApplication as _};
+    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
+    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+    let path = std::env::temp_dir().join(format!("pipearm-footer-{}.rrd", std::process::id()));
+    write_recording(&path, &summary, &series).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    std::fs::remove_file(&path).ok();
+    let recorded: Vec<_> = recording_chunks_of(&bytes).into_iter().map(|(_, chunk)| chunk.id()).collect();
+    let mut decoder = re_log_encoding::DecoderApp::decode_eager(&bytes[..]).unwrap();
+    decoder.by_ref().for_each(|msg| drop(msg.unwrap()));
+    let manifests = decoder.rrd_manifests().unwrap();
+    assert_eq!(manifests.len(), 1, "one footer");
+    let manifest = &manifests[0];
+    assert_eq!(manifest.store_id.kind(), re_log_types::StoreKind::Recording);
+    let ids: Vec<_> = manifest.col_chunk_id().unwrap().collect();
+    assert_eq!(ids, recorded, "the footer lists the recording's chunks in order");
+    let spans = manifest.col_chunk_byte_offset().unwrap().zip(manifest.col_chunk_byte_size().unwrap());
+    for (id, (offset, size)) in ids.iter().zip(spans) {
+        let (start, end) = (offset as usize, (offset + size) as usize);
+        let arrow = re_protos::log_msg::v1alpha1::ArrowMsg::from_rrd_bytes(&bytes[start..end]).unwrap();
+        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow.to_application(()).unwrap()).unwrap();
+        assert_eq!(chunk.id(), *id, "the chunk at {offset}");
+    }
+}
+
+/// The views a run calls for are known once its model is compiled, before it steps: on shipped
+/// scenes with each kind of actuator, a held string and a tilting head, the views the blueprint
+/// encoded ahead of the run shows are those of the run's series.
+#[test]
+fn the_views_known_before_the_run_are_the_runs() {
+    let scenes = ["default", "servo", "hydraulic_twin", "tilting_head", "lab"];
+    let mut seen = Vec::new();
+    for name in scenes {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("scenarios/{name}.toml"));
+        let scenario = Scenario::load(&path).unwrap();
+        for sign_off in [true, false] {
+            let options = RunOptions { capture_frames: true, sign_off, ..RunOptions::default() };
+            let compiled = CompiledModel::new(&scenario.model, options.fidelity, &scenario.compiler).unwrap();
+            let before = RunViews::before_run(&compiled, &options);
+            let (summary, series) = run_compiled(&compiled, &options);
+            summary.unwrap();
+            assert_eq!(before, RunViews::of(&series), "{name}, sign-off {sign_off}");
+            seen.push(before);
+        }
+    }
+    // The scenes between them call for every kind of view.
+    for actuator in [ActuatorViews::None, ActuatorViews::Tracking, ActuatorViews::TrackingAndPressures] {
+        assert!(seen.iter().any(|v| v.actuator == actuator), "{actuator:?}");
+    }
+    assert!(seen.iter().any(|v| v.string) && seen.iter().any(|v| !v.string));
+    assert!(seen.iter().any(|v| v.head) && seen.iter().any(|v| !v.head));
 }
 
 /// The UUID of a `RootContainer` column (a list of 16 bytes), as written in blueprint paths.

@@ -27,7 +27,7 @@ pub fn compare_command(
     let ending = Ending::Finished(&compared.summary);
     let recorded = Recorded { series: &compared.series, ending, overlay: &overlay };
     let rrd = out.join(format!("{}.compare.rrd", model.name));
-    save_recording(&rrd, &recorded)?;
+    save_recording(&rrd, &recorded, None)?;
     let json = out.join(format!("{}.compare.json", model.name));
     pipearm::compare::write_json(&json, &compared.comparison)?;
     println!("wrote {} and {}", json.display(), rrd.display());

@@ -74,6 +74,32 @@ impl RunViews {
     }
 }
 
+impl RunViews {
+    /// The views a run of `compiled` with `options` will call for, known before it steps: from
+    /// the channels its producers declare, the sign-off it is asked for and the 3D frames it
+    /// captures. A run that ends as it should calls for these ([`RunViews::of`] its series);
+    /// one the guard stopped may not (a sign-off it could not complete).
+    pub fn before_run(compiled: &crate::run::CompiledModel, options: &crate::run::RunOptions) -> Self {
+        use crate::channel::{ActuatorOutput, Reading};
+        let reads = |wanted: fn(Reading) -> bool| compiled.channels.iter().any(|c| wanted(c.reading()));
+        let actuator = if reads(|r| matches!(r, Reading::Actuator(ActuatorOutput::Pressure(..)))) {
+            ActuatorViews::TrackingAndPressures
+        } else if reads(|r| matches!(r, Reading::Actuator(ActuatorOutput::TrackingError))) {
+            ActuatorViews::Tracking
+        } else {
+            ActuatorViews::None
+        };
+        let pivot_m = compiled.model.robot.lift.pivot_m;
+        RunViews {
+            actuator,
+            string: reads(|r| r == Reading::StringTipDeflection),
+            head: reads(|r| r == Reading::HeadAngle),
+            sign_off: options.sign_off,
+            eye: options.capture_frames.then(|| Eye::framing_the_lift(pivot_m, compiled.arm.model.length_m())),
+        }
+    }
+}
+
 /// The 3D scene left; contact force, tip deflection, drive torque, a held string's tip
 /// deflection, a tilting head's angle, the sign-off's stress and pin loads, an actuator's tracking error and chamber pressures, and the event log one above
 /// the other on the right.

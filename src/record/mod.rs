@@ -54,6 +54,7 @@ mod writer;
 pub use crate::arm::{ENERGY_ENTITY, MODAL_ENTITY, TIP_DEFLECTION_ENTITY};
 pub use crate::scene::{force_entity, pair_name};
 pub use content::{arrow_scale_n_per_m, magnification};
+pub use layout::{ActuatorViews, RunViews};
 pub use stream::Viewer;
 pub use stress::{LEGEND_ENTITY, PEAK_ENTITY, PINS_ENTITY, WORST_STATION_ENTITY, YIELD_DRAWN_FROM, YIELD_ENTITY};
 
@@ -126,11 +127,52 @@ pub struct Recorded<'a> {
 
 /// Writes a finished run to `path` (.rrd).
 pub fn write_recording(path: &Path, summary: &RunSummary, series: &Series) -> Result<(), RecordError> {
-    save_recording(path, &Recorded { series, ending: Ending::Finished(summary), overlay: &[] })
+    save_recording(path, &Recorded { series, ending: Ending::Finished(summary), overlay: &[] }, None)
 }
 
-/// Writes `run` to `path` (.rrd), under a temporary name renamed when complete.
-pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
+/// A recording file's blueprint, encoded on a thread of its own while the run steps: the layout
+/// depends on what the run records, which its compiled model declares, not on its results
+/// ([`RunViews::before_run`]).
+pub struct BlueprintInAdvance {
+    views: RunViews,
+    encoding: std::thread::JoinHandle<rrd::RrdResult<rrd::EncodedBlueprint>>,
+}
+
+impl BlueprintInAdvance {
+    /// Starts encoding the blueprint of a run of `compiled` with `options`.
+    pub fn start(compiled: &crate::run::CompiledModel, options: &crate::run::RunOptions) -> Self {
+        let views = RunViews::before_run(compiled, options);
+        let name = compiled.model.name.clone();
+        BlueprintInAdvance { views, encoding: std::thread::spawn(move || encoded_blueprint(&name, views)) }
+    }
+
+    /// The encoded blueprint if it is `run`'s (else `run`'s, encoded here).
+    fn take_for(self, run: &Recorded) -> rrd::RrdResult<rrd::EncodedBlueprint> {
+        let encoded = self.encoding.join().unwrap_or_else(|_| Err("the blueprint's thread panicked".into()));
+        match RunViews::of(run.series) == self.views {
+            true => encoded,
+            false => encoded_blueprint(run.ending.scenario(), RunViews::of(run.series)),
+        }
+    }
+}
+
+/// The blueprint of a recording of scenario `name`: the layout of `views`.
+fn encoded_blueprint(name: &str, views: RunViews) -> rrd::RrdResult<rrd::EncodedBlueprint> {
+    let layout = layout::run_layout(views);
+    // Named by the scenario and the layout, so that recordings of one scenario with the same
+    // views share one blueprint in the viewer, and ones with other views do not.
+    let digest = format!("{layout:?}")
+        .bytes()
+        .fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
+    rrd::EncodedBlueprint::new(APPLICATION_ID, &format!("{name}-blueprint-{digest:016x}"), &layout)
+}
+
+/// Application id of every recording, a file's and a stream's.
+const APPLICATION_ID: &str = "pipearm";
+
+/// Writes `run` to `path` (.rrd), under a temporary name renamed when complete, with `blueprint`
+/// where it was started ahead of the run (else the blueprint is encoded here).
+pub fn save_recording(path: &Path, run: &Recorded, blueprint: Option<BlueprintInAdvance>) -> Result<(), RecordError> {
     let shown = path.display().to_string();
     let io = |source| RecordError::Io { path: shown.clone(), source };
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
@@ -138,7 +180,7 @@ pub fn save_recording(path: &Path, run: &Recorded) -> Result<(), RecordError> {
     }
     let tmp = path.with_extension("rrd.tmp");
     let file = std::fs::File::create(&tmp).map_err(io)?;
-    let written = write_rrd(file, run);
+    let written = write_rrd(file, run, blueprint);
     if let Err(message) = written {
         std::fs::remove_file(&tmp).ok();
         return Err(RecordError::Rrd { path: shown, message });
@@ -156,10 +198,10 @@ fn recording_id(run: &Recorded) -> String {
     format!("{}-{digest:016x}", run.ending.scenario())
 }
 
-/// `run` into `file`: each chunk encoded as it is made (and its memory reused for the next), then
-/// the blueprint.
-fn write_rrd(file: std::fs::File, run: &Recorded) -> Result<(), String> {
-    let mut out = rrd::RrdFile::create(file, "pipearm", &recording_id(run))?;
+/// `run` into `file`: each chunk encoded as it is made (and its memory reused for the next),
+/// then the blueprint, `blueprint`'s if it was started ahead of the run.
+fn write_rrd(file: std::fs::File, run: &Recorded, blueprint: Option<BlueprintInAdvance>) -> Result<(), String> {
+    let mut out = rrd::RrdFile::create(file, APPLICATION_ID, &recording_id(run))?;
     let mut encoded = Ok(());
     content::chunks(run, &mut |chunk| {
         if encoded.is_ok() {
@@ -168,8 +210,11 @@ fn write_rrd(file: std::fs::File, run: &Recorded) -> Result<(), String> {
     })
     .map_err(|e| e.to_string())?;
     encoded?;
-    out.blueprint(&layout::run_layout(layout::RunViews::of(run.series)))?;
-    out.finish()
+    let blueprint = match blueprint {
+        Some(blueprint) => blueprint.take_for(run)?,
+        None => encoded_blueprint(run.ending.scenario(), RunViews::of(run.series))?,
+    };
+    out.finish(&blueprint)
 }
 
 /// Streams `run` to `viewer`, as a new recording named after its scenario.
@@ -180,7 +225,7 @@ pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordErr
         .map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
     out.send_chunks(chunks);
-    stream::finish(out, &target, layout::RunViews::of(run.series))
+    stream::finish(out, &target, RunViews::of(run.series))
 }
 
 /// Moves the complete file `tmp` to `path`. The old file is removed first: renamed over, ext4

@@ -1,22 +1,25 @@
-//! An `.rrd` file written on the caller's thread, with no `RecordingStream`: the one place that
-//! uses rerun's internal types (`re_log_encoding`, `re_log_types`, the blueprint archetypes of
-//! `re_sdk_types`, all through `rerun::external`), because rerun's public path to a file costs a
-//! third of the default run (docs/recording.md, "How it is written").
+//! An `.rrd` file written with no `RecordingStream`: the one place that uses rerun's internal
+//! types (`re_log_encoding`, `re_log_types`, the blueprint archetypes of `re_sdk_types`, all
+//! through `rerun::external`), because rerun's public path to a file costs a third of the default
+//! run (docs/recording.md, "How it is written").
 //!
 //! A `RecordingStream` is made for live logging: a batcher, a forwarding and a file-writer thread
-//! per stream, LZ4 on every chunk, a second stream for the blueprint. The writer here writes what
-//! that stream would, in the same messages: the recording's store info, one Arrow message per
-//! chunk, the blueprint's store (its views and containers at time 0 of the `blueprint` timeline,
-//! as rerun's `Blueprint` logs them) and the command that activates it, last. The encoder writes
-//! rerun's footer on [`RrdFile::finish`] (`rerun rrd verify` requires it); errors, the footer's
-//! included, are returned, not logged.
+//! per stream, LZ4 on every chunk, a second stream for the blueprint. The file here holds what
+//! that stream would write, in the same messages, as two rrd streams one after the other (rerun's
+//! decoder reads concatenated streams): the recording's ([`RrdFile`]: its store info, one Arrow
+//! message per chunk, rerun's footer, which `rerun rrd verify` requires), then the blueprint's
+//! ([`EncodedBlueprint`]: its views and containers at time 0 of the `blueprint` timeline, as
+//! rerun's `Blueprint` logs them, and the command that activates it). The blueprint's stream has
+//! no footer: a footer's chunk offsets count from its own stream's start, which `rerun rrd
+//! verify` reads as the file's, so only the first stream can carry one. Being a stream of its own,
+//! the blueprint can be encoded on another thread while the run steps.
 //!
 //! Unlike rerun's streams, nothing here depends on the clock or on randomness: the blueprint's
-//! identifiers derive from the recording id and the chunks carry no `log_time`, so a run writes
-//! the same entities, times and values every time.
+//! identifiers derive from its name and the chunks carry no `log_time`, so a run writes the same
+//! entities, times and values every time.
 
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
 
 use rerun::external::re_log_encoding::{Encoder, EncodingOptions};
 use rerun::external::re_log_types::{
@@ -34,24 +37,18 @@ pub(super) fn text(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
-/// A recording file being written: the recording's store, then the blueprint's.
-pub struct RrdFile {
-    encoder: Encoder<BufWriter<File>>,
-    recording: StoreId,
+/// One rrd stream being encoded into `W`.
+struct Stream<W: Write> {
+    encoder: Encoder<W>,
 }
 
-impl RrdFile {
-    /// Starts a recording of application `application_id` with id `recording_id` in `file`.
-    pub fn create(file: File, application_id: &'static str, recording_id: &str) -> RrdResult<Self> {
+impl<W: Write> Stream<W> {
+    fn new(out: W) -> RrdResult<Self> {
         let version = rerun::external::re_build_info::CrateVersion::LOCAL;
-        // 64 kB: the file is written once, front to back; a larger buffer only touches memory.
-        let writer = BufWriter::with_capacity(1 << 16, file);
         // Uncompressed: LZ4 doubled the encoding time for a file of 1 MB (`rerun rrd optimize`
         // compresses one afterwards).
-        let encoder = Encoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, writer).map_err(text)?;
-        let mut out = RrdFile { encoder, recording: StoreId::recording(application_id, recording_id) };
-        out.begin_store(out.recording.clone())?;
-        Ok(out)
+        let encoder = Encoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, out).map_err(text)?;
+        Ok(Stream { encoder })
     }
 
     fn begin_store(&mut self, store: StoreId) -> RrdResult<()> {
@@ -68,35 +65,74 @@ impl RrdFile {
         self.append(&LogMsg::ArrowMsg(store, chunk.to_arrow_msg().map_err(text)?))
     }
 
+    /// Ends the stream (with its footer unless it was turned off) and returns its output.
+    fn finish(mut self) -> RrdResult<W> {
+        self.encoder.finish().map_err(text)?;
+        self.encoder.into_inner().map_err(text)
+    }
+}
+
+/// A recording file being written: the recording's stream, then the blueprint's (module doc).
+pub struct RrdFile {
+    stream: Stream<BufWriter<File>>,
+    recording: StoreId,
+}
+
+impl RrdFile {
+    /// Starts a recording of application `application_id` with id `recording_id` in `file`.
+    pub fn create(file: File, application_id: &'static str, recording_id: &str) -> RrdResult<Self> {
+        // 64 kB: the file is written once, front to back; a larger buffer only touches memory.
+        let stream = Stream::new(BufWriter::with_capacity(1 << 16, file))?;
+        let mut out = RrdFile { stream, recording: StoreId::recording(application_id, recording_id) };
+        out.stream.begin_store(out.recording.clone())?;
+        Ok(out)
+    }
+
     /// A chunk of the recording.
     pub fn send_chunk(&mut self, chunk: &Chunk) -> RrdResult<()> {
-        self.send_to(self.recording.clone(), chunk)
+        self.stream.send_to(self.recording.clone(), chunk)
     }
 
-    /// Writes `layout` as the recording's blueprint and activates it (ends the recording's store:
-    /// call it last).
-    pub fn blueprint(&mut self, layout: &BlueprintLayout) -> RrdResult<()> {
-        let application = self.recording.application_id().clone();
-        let store =
-            StoreId::new(StoreKind::Blueprint, application, format!("{}-blueprint", self.recording.recording_id()));
-        self.begin_store(store.clone())?;
+    /// Writes the recording's footer, then `blueprint`, and flushes the file.
+    pub fn finish(self, blueprint: &EncodedBlueprint) -> RrdResult<()> {
+        let mut writer = self.stream.finish()?;
+        writer.write_all(&blueprint.0).map_err(text)?;
+        writer.flush().map_err(text)
+    }
+}
+
+/// A blueprint encoded as an rrd stream of its own, with no footer (module doc).
+pub struct EncodedBlueprint(Vec<u8>);
+
+impl EncodedBlueprint {
+    /// The blueprint `layout` of application `application_id`, in a store named `name` (the
+    /// identifiers of its views derive from it), activated.
+    pub fn new(application_id: &'static str, name: &str, layout: &BlueprintLayout) -> RrdResult<Self> {
+        let mut stream = Stream::new(Vec::new())?;
+        stream.encoder.do_not_emit_footer();
+        let store = StoreId::new(StoreKind::Blueprint, application_id, name);
+        stream.begin_store(store.clone())?;
         let mut ids = 0u8;
-        let root = self.blueprint_part(&store, layout, &mut ids)?;
+        let root = stream.blueprint_part(&store, name, layout, &mut ids)?;
         let viewport = blueprint::ViewportBlueprint::new().with_root_container(blueprint::RootContainer(root.0.into()));
-        self.blueprint_row(&store, "viewport", &viewport)?;
+        stream.blueprint_row(&store, "viewport", &viewport)?;
         let activate = BlueprintActivationCommand { blueprint_id: store, make_active: true, make_default: true };
-        self.append(&LogMsg::BlueprintActivationCommand(activate))
+        stream.append(&LogMsg::BlueprintActivationCommand(activate))?;
+        stream.finish().map(EncodedBlueprint)
     }
+}
 
+impl Stream<Vec<u8>> {
     /// Logs a view or a container (its children first) and returns its id and blueprint path.
     fn blueprint_part(
         &mut self,
         store: &StoreId,
+        name: &str,
         part: &BlueprintLayout,
         ids: &mut u8,
     ) -> RrdResult<([u8; 16], String)> {
         *ids += 1;
-        let id = blueprint_uuid(self.recording.recording_id().as_str(), *ids);
+        let id = blueprint_uuid(name, *ids);
         match part {
             BlueprintLayout::View { class, name, origin, eye } => {
                 let path = format!("view/{}", uuid_text(&id));
@@ -119,7 +155,7 @@ impl RrdFile {
             BlueprintLayout::Horizontal(children) | BlueprintLayout::Vertical(children) => {
                 let mut paths = Vec::with_capacity(children.len());
                 for child in children {
-                    let (_, path) = self.blueprint_part(store, child, ids)?;
+                    let (_, path) = self.blueprint_part(store, name, child, ids)?;
                     paths.push(blueprint::IncludedContent(format!("/{path}").into()));
                 }
                 let kind = match part {
@@ -139,13 +175,6 @@ impl RrdFile {
         let chunk = Chunk::builder(entity).with_archetype(RowId::new(), time, archetype).build().map_err(text)?;
         self.send_to(store.clone(), &chunk)
     }
-
-    /// Writes the footer and flushes the file.
-    pub fn finish(mut self) -> RrdResult<()> {
-        self.encoder.finish().map_err(text)?;
-        let mut writer = self.encoder.into_inner().map_err(text)?;
-        std::io::Write::flush(&mut writer).map_err(text)
-    }
 }
 
 /// Blueprint types (`rerun::blueprint` re-exports their components, not their archetypes).
@@ -158,12 +187,10 @@ mod blueprint {
     };
 }
 
-/// A version-4-shaped UUID for the `k`-th blueprint part of a recording, from its id (FNV-1a):
-/// the same recording gets the same blueprint every time.
-fn blueprint_uuid(recording_id: &str, k: u8) -> [u8; 16] {
-    let hash = |seed: u64| {
-        recording_id.bytes().chain([k]).fold(seed, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
-    };
+/// A version-4-shaped UUID for the `k`-th part of the blueprint named `name` (FNV-1a): the same
+/// blueprint gets the same identifiers every time.
+fn blueprint_uuid(name: &str, k: u8) -> [u8; 16] {
+    let hash = |seed: u64| name.bytes().chain([k]).fold(seed, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
     let mut bytes = [0u8; 16];
     bytes[..8].copy_from_slice(&hash(0xcbf2_9ce4_8422_2325).to_be_bytes());
     bytes[8..].copy_from_slice(&hash(0x8422_2325_cbf2_9ce4).to_be_bytes());
@@ -184,10 +211,10 @@ mod tests {
 
     #[test]
     fn blueprint_ids_are_distinct_stable_uuids() {
-        let a = blueprint_uuid("default", 1);
-        assert_eq!(a, blueprint_uuid("default", 1));
-        assert_ne!(a, blueprint_uuid("default", 2));
-        assert_ne!(a, blueprint_uuid("lowering", 1));
+        let a = blueprint_uuid("default-blueprint", 1);
+        assert_eq!(a, blueprint_uuid("default-blueprint", 1));
+        assert_ne!(a, blueprint_uuid("default-blueprint", 2));
+        assert_ne!(a, blueprint_uuid("lowering-blueprint", 1));
         let text = uuid_text(&a);
         assert_eq!(text.len(), 36);
         assert_eq!(text.as_bytes()[14], b'4', "version nibble in {text}");

@@ -7,11 +7,8 @@ use rerun::blueprint::{
 use rerun::log::ChunkBatcherConfig;
 use rerun::{RecordingStream, RecordingStreamBuilder};
 
-use super::RecordError;
 use super::layout::{BlueprintLayout, RunViews, run_layout};
-
-/// Application id of every recording.
-const APPLICATION_ID: &str = "pipearm";
+use super::{APPLICATION_ID, RecordError};
 
 /// A viewer to stream a run to.
 #[derive(Debug, Clone, PartialEq, Eq)]
