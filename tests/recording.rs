@@ -254,6 +254,16 @@ fn the_views_known_before_the_run_are_the_runs() {
             let (summary, series) = run_compiled(&compiled, &options);
             summary.unwrap();
             assert_eq!(before, RunViews::of(&series), "{name}, sign-off {sign_off}");
+            // And they are what the run filled: the declarations hold.
+            let actuator = match series.actuator.first() {
+                None => ActuatorViews::None,
+                Some(outputs) if outputs.cylinders.is_empty() => ActuatorViews::Tracking,
+                Some(_) => ActuatorViews::TrackingAndPressures,
+            };
+            assert_eq!(before.actuator, actuator, "{name}");
+            assert_eq!(before.string, !series.string_tip_deflection_m.is_empty(), "{name}");
+            assert_eq!(before.head, !series.head_angle_rad.is_empty(), "{name}");
+            assert_eq!(before.sign_off, series.stress.steps() == series.t_s.len(), "{name}");
             seen.push(before);
         }
     }

@@ -62,26 +62,26 @@ pub struct RunViews {
 }
 
 impl RunViews {
-    /// The views for a run's series.
+    /// The views for a run's series: its channels, its sign-off's readings and its 3D frames.
     pub fn of(series: &crate::run::Series) -> Self {
-        RunViews {
-            actuator: ActuatorViews::of(&series.actuator),
-            string: !series.string_tip_deflection_m.is_empty(),
-            head: !series.head_angle_rad.is_empty(),
-            sign_off: series.stress.steps() > 0,
-            eye: series.layout.as_ref().map(|l| Eye::framing_the_lift(l.pivot_m, l.length_m)),
-        }
+        let lift = series.layout.as_ref().map(|l| (l.pivot_m, l.length_m));
+        Self::declared(&series.channels, series.stress.steps() > 0, lift)
     }
-}
 
-impl RunViews {
     /// The views a run of `compiled` with `options` will call for, known before it steps: from
     /// the channels its producers declare, the sign-off it is asked for and the 3D frames it
     /// captures. A run that ends as it should calls for these ([`RunViews::of`] its series);
     /// one the guard stopped may not (a sign-off it could not complete).
     pub fn before_run(compiled: &crate::run::CompiledModel, options: &crate::run::RunOptions) -> Self {
+        let lift = (compiled.model.robot.lift.pivot_m, compiled.arm.model.length_m());
+        Self::declared(&compiled.channels, options.sign_off, options.capture_frames.then_some(lift))
+    }
+
+    /// The views of a run with `channels`, the sign-off's plots if `sign_off`, and a 3D view
+    /// framing the lift about a pivot with an arm's length (m) where the run draws it.
+    fn declared(channels: &[crate::channel::Channel], sign_off: bool, lift: Option<([f64; 3], f64)>) -> Self {
         use crate::channel::{ActuatorOutput, Reading};
-        let reads = |wanted: fn(Reading) -> bool| compiled.channels.iter().any(|c| wanted(c.reading()));
+        let reads = |wanted: fn(Reading) -> bool| channels.iter().any(|c| wanted(c.reading()));
         let actuator = if reads(|r| matches!(r, Reading::Actuator(ActuatorOutput::Pressure(..)))) {
             ActuatorViews::TrackingAndPressures
         } else if reads(|r| matches!(r, Reading::Actuator(ActuatorOutput::TrackingError))) {
@@ -89,13 +89,12 @@ impl RunViews {
         } else {
             ActuatorViews::None
         };
-        let pivot_m = compiled.model.robot.lift.pivot_m;
         RunViews {
             actuator,
             string: reads(|r| r == Reading::StringTipDeflection),
             head: reads(|r| r == Reading::HeadAngle),
-            sign_off: options.sign_off,
-            eye: options.capture_frames.then(|| Eye::framing_the_lift(pivot_m, compiled.arm.model.length_m())),
+            sign_off,
+            eye: lift.map(|(pivot_m, length_m)| Eye::framing_the_lift(pivot_m, length_m)),
         }
     }
 }
@@ -130,15 +129,4 @@ pub fn run_layout(views: RunViews) -> BlueprintLayout {
     plots.push(view("TextLog", "events", "events"));
     let scene = BlueprintLayout::View { class: "3D", name: "scene", origin: "world", eye: views.eye };
     BlueprintLayout::Horizontal(vec![scene, BlueprintLayout::Vertical(plots)])
-}
-
-impl ActuatorViews {
-    /// The views for a run's actuator outputs.
-    pub fn of(outputs: &[crate::actuator::ActuatorOutputs]) -> Self {
-        match outputs.first() {
-            None => ActuatorViews::None,
-            Some(o) if !o.cylinders.is_empty() => ActuatorViews::TrackingAndPressures,
-            Some(_) => ActuatorViews::Tracking,
-        }
-    }
 }
