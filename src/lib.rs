@@ -19,6 +19,7 @@ pub mod choice;
 pub mod compare;
 pub mod compile;
 pub mod contact;
+mod cores;
 pub mod design;
 pub mod draw;
 pub mod drive;

@@ -13,7 +13,7 @@ use clap::{Parser, Subcommand};
 use pipearm::arm::Fidelity;
 use pipearm::record::{BlueprintInAdvance, Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
-use pipearm::run::{CompiledModel, RunOptions, RunSummary, Series, run, run_compiled};
+use pipearm::run::{CompiledModel, RunOptions, RunSummary, run, run_compiled};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
@@ -307,15 +307,13 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     let started = std::time::Instant::now();
     let scenario = overrides.load(path)?;
     let model = &scenario.model;
-    // The recording's blueprint is encoded on the second core while the run steps.
-    let (result, series, mut blueprint) = match CompiledModel::new(model, options.fidelity, &scenario.compiler) {
-        Ok(compiled) => {
-            let blueprint = outputs.files.map(|_| BlueprintInAdvance::start(&compiled, &options));
-            let (result, series) = run_compiled(&compiled, &options);
-            (result, series, blueprint)
-        }
-        Err(error) => (Err(error.into()), Series::default(), None),
-    };
+    let running = || format!("{}: running", path.display());
+    let compiled = CompiledModel::new(model, options.fidelity, &scenario.compiler)
+        .map_err(SceneError::from)
+        .with_context(running)?;
+    // The recording's blueprint is encoded on a second thread while the run steps.
+    let blueprint = outputs.files.map(|_| BlueprintInAdvance::start(&compiled, &options));
+    let (result, series) = run_compiled(&compiled, &options);
     let name = &model.name;
     let summary = match result {
         Ok(summary) => summary,
@@ -323,10 +321,10 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
             let message = error.to_string();
             let ending = Ending::Diverged { scenario: name, t_s, message: &message };
             let run = Recorded { series: &series, ending, overlay: &[] };
-            record_divergence(&outputs, name, &run, blueprint.take());
-            return Err(anyhow::Error::new(error).context(format!("{}: running", path.display())));
+            record_divergence(&outputs, name, &run, blueprint);
+            return Err(anyhow::Error::new(error).context(running()));
         }
-        Err(error) => return Err(error).with_context(|| format!("{}: running", path.display())),
+        Err(error) => return Err(error).with_context(running),
     };
     print_summary(path, &summary);
     let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
@@ -334,7 +332,7 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
         let started = std::time::Instant::now();
         let rrd = out.join(format!("{name}.rrd"));
         let json = out.join(format!("{name}.summary.json"));
-        save_recording(&rrd, &run, blueprint.take())?;
+        save_recording(&rrd, &run, blueprint)?;
         write_summary(&json, &summary)?;
         let bytes = std::fs::metadata(&rrd).map(|m| m.len()).unwrap_or(0);
         println!(
@@ -353,7 +351,8 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     if let Some(out) = outputs.tables {
         write_tables(out, &model.name, (&series, &summary), model)?;
     }
-    // In-process, one thread for the simulation: scenario read, model built, stepped, recorded.
+    // In-process: scenario read, model built, stepped, recorded (the sign-off's recovery and the
+    // recording's blueprint on a second thread where one is spare).
     let total_s = started.elapsed().as_secs_f64();
     println!(
         "total               {total_s:.3} s from reading the scenario to the last file written ({:.0}x real time)",

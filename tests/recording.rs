@@ -15,13 +15,9 @@ use pipearm::scenario::Scenario;
 /// The recording store's chunks in `path`, in the order of the file, each with its entity path
 /// (without the leading `/`).
 fn recording_chunks(path: &Path) -> Vec<(String, re_chunk::Chunk)> {
-    recording_chunks_of(&std::fs::read(path).unwrap())
-}
-
-/// The recording store's chunks in the file `bytes`, as [`recording_chunks`].
-fn recording_chunks_of(bytes: &[u8]) -> Vec<(String, re_chunk::Chunk)> {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
     let mut chunks = Vec::new();
-    for msg in re_log_encoding::DecoderApp::decode_eager(bytes).unwrap() {
+    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
         let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
         if store.kind() == re_log_types::StoreKind::Recording {
             let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
@@ -153,15 +149,16 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
             stores.push(s.info.store_id.clone());
         }
     }
-    // The recording's stream, then the blueprint's, activated last.
-    assert_eq!(stores.iter().map(|s| s.kind()).collect::<Vec<_>>(), [StoreKind::Recording, StoreKind::Blueprint]);
-    let activation = messages.iter().find_map(|m| match m {
-        LogMsg::BlueprintActivationCommand(c) => Some(c.clone()),
-        _ => None,
-    });
-    let activation = activation.expect("the blueprint is activated");
-    assert!(activation.blueprint_id == stores[1] && activation.make_active && activation.make_default);
-    assert!(matches!(messages.last(), Some(LogMsg::BlueprintActivationCommand(_))), "activation comes last");
+    // The blueprint first and activated, then the recording, as rerun's
+    // `RecordingStreamBuilder::with_blueprint` sends them.
+    assert_eq!(stores.iter().map(|s| s.kind()).collect::<Vec<_>>(), [StoreKind::Blueprint, StoreKind::Recording]);
+    let activated = messages.iter().position(|m| matches!(m, LogMsg::BlueprintActivationCommand(_)));
+    let activated = activated.expect("the blueprint is activated");
+    let LogMsg::BlueprintActivationCommand(activation) = &messages[activated] else { unreachable!() };
+    assert!(activation.blueprint_id == stores[0] && activation.make_active && activation.make_default);
+    let recording_begins =
+        messages.iter().position(|m| matches!(m, LogMsg::SetStoreInfo(s) if s.info.store_id == stores[1]));
+    assert!(recording_begins.is_some_and(|r| r > activated), "the activation comes before the recording's store");
 
     // Blueprint entities: the viewport's root is a logged container; views by class.
     let mut blueprint_paths = Vec::new();
@@ -206,34 +203,51 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
     assert!(events.num_rows() >= 3 * impacts, "{} rows for {impacts} impacts", events.num_rows());
 }
 
-/// The file's footer indexes every chunk of the recording where it lies in the file, as `rerun rrd
-/// verify` checks: the blueprint's stream after it carries no footer whose offsets would count
-/// from its own start.
+/// The file ends in rerun's footer, found from the file's end as rerun's readers that seek find
+/// it, and it indexes every chunk of both stores where it lies in the file, as `rerun rrd verify`
+/// checks (the blueprint's were encoded before the file was open).
 #[test]
-fn the_footer_finds_every_chunk_of_the_recording_where_it_lies() {
-    use re_log_encoding::{Decodable as _, ToApplication as _};
+fn the_footer_at_the_files_end_finds_every_chunk_where_it_lies() {
+    use re_log_encoding::{Decodable as _, StreamFooter, ToApplication as _};
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
-    let (summary, series) = run_with(&scenario.model, &options).unwrap();
+    let compiled = CompiledModel::new(&scenario.model, options.fidelity, &scenario.compiler).unwrap();
+    let blueprint = BlueprintInAdvance::start(&compiled, &options);
+    let (summary, series) = run_compiled(&compiled, &options);
+    let summary = summary.unwrap();
     let path = std::env::temp_dir().join(format!("pipearm-footer-{}.rrd", std::process::id()));
-    write_recording(&path, &summary, &series).unwrap();
+    let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
+    save_recording(&path, &run, Some(blueprint)).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     std::fs::remove_file(&path).ok();
-    let recorded: Vec<_> = recording_chunks_of(&bytes).into_iter().map(|(_, chunk)| chunk.id()).collect();
-    let mut decoder = re_log_encoding::DecoderApp::decode_eager(&bytes[..]).unwrap();
-    decoder.by_ref().for_each(|msg| drop(msg.unwrap()));
-    let manifests = decoder.rrd_manifests().unwrap();
-    assert_eq!(manifests.len(), 1, "one footer");
-    let manifest = &manifests[0];
-    assert_eq!(manifest.store_id.kind(), re_log_types::StoreKind::Recording);
-    let ids: Vec<_> = manifest.col_chunk_id().unwrap().collect();
-    assert_eq!(ids, recorded, "the footer lists the recording's chunks in order");
-    let spans = manifest.col_chunk_byte_offset().unwrap().zip(manifest.col_chunk_byte_size().unwrap());
-    for (id, (offset, size)) in ids.iter().zip(spans) {
-        let (start, end) = (offset as usize, (offset + size) as usize);
-        let arrow = re_protos::log_msg::v1alpha1::ArrowMsg::from_rrd_bytes(&bytes[start..end]).unwrap();
-        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow.to_application(()).unwrap()).unwrap();
-        assert_eq!(chunk.id(), *id, "the chunk at {offset}");
+
+    let stream_footer = StreamFooter::from_rrd_bytes(&bytes[bytes.len() - StreamFooter::ENCODED_SIZE_BYTES..]);
+    let span = stream_footer.expect("a stream footer at the file's end").entries[0]
+        .rrd_footer_byte_span_from_start_excluding_header;
+    let (start, end) = (span.start as usize, (span.start + span.len) as usize);
+    let footer = re_protos::log_msg::v1alpha1::RrdFooter::from_rrd_bytes(&bytes[start..end]).unwrap();
+    let footer = footer.to_application(()).unwrap();
+    let mut kinds: Vec<_> = footer.manifests.keys().map(|store| store.kind()).collect();
+    kinds.sort_by_key(|kind| format!("{kind:?}"));
+    assert_eq!(kinds, [re_log_types::StoreKind::Blueprint, re_log_types::StoreKind::Recording]);
+
+    let mut decoded = std::collections::HashMap::new();
+    for msg in re_log_encoding::DecoderApp::decode_eager(&bytes[..]).unwrap() {
+        if let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() {
+            let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+            decoded.entry(store).or_insert_with(Vec::new).push(chunk.id());
+        }
+    }
+    for (store, manifest) in &footer.manifests {
+        let ids: Vec<_> = manifest.col_chunk_id().unwrap().collect();
+        assert_eq!(ids, decoded[store], "{store:?}: the footer lists the store's chunks in order");
+        let spans = manifest.col_chunk_byte_offset().unwrap().zip(manifest.col_chunk_byte_size().unwrap());
+        for (id, (offset, size)) in ids.iter().zip(spans) {
+            let (start, end) = (offset as usize, (offset + size) as usize);
+            let arrow = re_protos::log_msg::v1alpha1::ArrowMsg::from_rrd_bytes(&bytes[start..end]).unwrap();
+            let chunk = re_chunk::Chunk::from_arrow_msg(&arrow.to_application(()).unwrap()).unwrap();
+            assert_eq!(chunk.id(), *id, "{store:?}: the chunk at {offset}");
+        }
     }
 }
 
@@ -273,6 +287,39 @@ fn the_views_known_before_the_run_are_the_runs() {
     }
     assert!(seen.iter().any(|v| v.string) && seen.iter().any(|v| !v.string));
     assert!(seen.iter().any(|v| v.head) && seen.iter().any(|v| !v.head));
+}
+
+/// A run that records other views than the ones its blueprint was encoded for ahead of it (here
+/// a sign-off asked for and not run, as when the guard stops a run before its sign-off is
+/// complete) gets a blueprint of its own views.
+#[test]
+fn a_blueprint_for_views_the_run_did_not_record_is_encoded_again() {
+    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
+    let asked = RunOptions { capture_frames: true, sign_off: true, ..RunOptions::default() };
+    let compiled = CompiledModel::new(&scenario.model, asked.fidelity, &scenario.compiler).unwrap();
+    let blueprint = BlueprintInAdvance::start(&compiled, &asked);
+    let (summary, series) = run_compiled(&compiled, &RunOptions { sign_off: false, ..asked });
+    let summary = summary.unwrap();
+    let path = std::env::temp_dir().join(format!("pipearm-reencoded-{}.rrd", std::process::id()));
+    let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
+    save_recording(&path, &run, Some(blueprint)).unwrap();
+    let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
+    let mut classes = String::new();
+    for msg in re_log_encoding::DecoderApp::decode_eager(file).unwrap() {
+        let re_log_types::LogMsg::ArrowMsg(store, arrow) = msg.unwrap() else { continue };
+        let chunk = re_chunk::Chunk::from_arrow_msg(&arrow).unwrap();
+        if store.kind() == re_log_types::StoreKind::Blueprint {
+            for descriptor in
+                chunk.component_descriptors().filter(|d| d.component.as_str() == "ViewBlueprint:class_identifier")
+            {
+                classes += &format!("{:?}", chunk.components().get_array(descriptor.component).unwrap());
+            }
+        }
+    }
+    std::fs::remove_file(&path).ok();
+    // Contact force, tip deflection, drive torque and the held string's tip deflection: no stress
+    // at the worst station, no pin loads.
+    assert_eq!(classes.matches("\"TimeSeries\"").count(), 4, "{classes}");
 }
 
 /// The UUID of a `RootContainer` column (a list of 16 bytes), as written in blueprint paths.

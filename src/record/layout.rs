@@ -62,24 +62,27 @@ pub struct RunViews {
 }
 
 impl RunViews {
-    /// The views for a run's series: its channels, its sign-off's readings and its 3D frames.
+    /// The views for a run's series: its channels (a complete sign-off's among them) and its 3D
+    /// frames.
     pub fn of(series: &crate::run::Series) -> Self {
         let lift = series.layout.as_ref().map(|l| (l.pivot_m, l.length_m));
-        Self::declared(&series.channels, series.stress.steps() > 0, lift)
+        Self::declared(&series.channels, lift)
     }
 
     /// The views a run of `compiled` with `options` will call for, known before it steps: from
-    /// the channels its producers declare, the sign-off it is asked for and the 3D frames it
-    /// captures. A run that ends as it should calls for these ([`RunViews::of`] its series);
-    /// one the guard stopped may not (a sign-off it could not complete).
+    /// the channels its producers declare, the sign-off it is asked for (whose channels follow
+    /// where the run's peak falls) and the 3D frames it captures. A run that ends as it should
+    /// calls for these ([`RunViews::of`] its series); one the guard stopped before its sign-off
+    /// was complete does not.
     pub fn before_run(compiled: &crate::run::CompiledModel, options: &crate::run::RunOptions) -> Self {
         let lift = (compiled.model.robot.lift.pivot_m, compiled.arm.model.length_m());
-        Self::declared(&compiled.channels, options.sign_off, options.capture_frames.then_some(lift))
+        let declared = Self::declared(&compiled.channels, options.capture_frames.then_some(lift));
+        RunViews { sign_off: options.sign_off, ..declared }
     }
 
-    /// The views of a run with `channels`, the sign-off's plots if `sign_off`, and a 3D view
-    /// framing the lift about a pivot with an arm's length (m) where the run draws it.
-    fn declared(channels: &[crate::channel::Channel], sign_off: bool, lift: Option<([f64; 3], f64)>) -> Self {
+    /// The views of a run with `channels`, with a 3D view framing the lift about a pivot with an
+    /// arm's length (m) where the run draws it.
+    fn declared(channels: &[crate::channel::Channel], lift: Option<([f64; 3], f64)>) -> Self {
         use crate::channel::{ActuatorOutput, Reading};
         let reads = |wanted: fn(Reading) -> bool| channels.iter().any(|c| wanted(c.reading()));
         let actuator = if reads(|r| matches!(r, Reading::Actuator(ActuatorOutput::Pressure(..)))) {
@@ -93,7 +96,7 @@ impl RunViews {
             actuator,
             string: reads(|r| r == Reading::StringTipDeflection),
             head: reads(|r| r == Reading::HeadAngle),
-            sign_off,
+            sign_off: reads(|r| matches!(r, Reading::Stress { .. })),
             eye: lift.map(|(pivot_m, length_m)| Eye::framing_the_lift(pivot_m, length_m)),
         }
     }

@@ -130,12 +130,13 @@ pub fn write_recording(path: &Path, summary: &RunSummary, series: &Series) -> Re
     save_recording(path, &Recorded { series, ending: Ending::Finished(summary), overlay: &[] }, None)
 }
 
-/// A recording file's blueprint, encoded on a thread of its own while the run steps: the layout
-/// depends on what the run records, which its compiled model declares, not on its results
-/// ([`RunViews::before_run`]).
+/// A recording file's start, its blueprint, encoded on a thread of its own while the run steps:
+/// the layout depends on what the run records, which its compiled model declares, not on its
+/// results ([`RunViews::before_run`]).
 pub struct BlueprintInAdvance {
     views: RunViews,
-    encoding: std::thread::JoinHandle<rrd::RrdResult<rrd::EncodedBlueprint>>,
+    /// The encoding thread; none where no core is spare (it is encoded at the save then).
+    encoding: Option<std::thread::JoinHandle<rrd::RrdResult<rrd::Start>>>,
 }
 
 impl BlueprintInAdvance {
@@ -143,28 +144,29 @@ impl BlueprintInAdvance {
     pub fn start(compiled: &crate::run::CompiledModel, options: &crate::run::RunOptions) -> Self {
         let views = RunViews::before_run(compiled, options);
         let name = compiled.model.name.clone();
-        BlueprintInAdvance { views, encoding: std::thread::spawn(move || encoded_blueprint(&name, views)) }
+        let thread = std::thread::Builder::new().name("pipearm-blueprint".into());
+        let encoding = crate::cores::spare().then(|| thread.spawn(move || start_of(&name, views)).ok()).flatten();
+        BlueprintInAdvance { views, encoding }
     }
 
-    /// The encoded blueprint if it is `run`'s (else `run`'s, encoded here).
-    fn take_for(self, run: &Recorded) -> rrd::RrdResult<rrd::EncodedBlueprint> {
-        let encoded = self.encoding.join().unwrap_or_else(|_| Err("the blueprint's thread panicked".into()));
-        match RunViews::of(run.series) == self.views {
-            true => encoded,
-            false => encoded_blueprint(run.ending.scenario(), RunViews::of(run.series)),
-        }
+    /// The start of `run`'s file: the one encoded in advance if its views are `run`'s and its
+    /// thread finished it, else encoded here.
+    fn take_for(self, run: &Recorded) -> rrd::RrdResult<rrd::Start> {
+        let views = RunViews::of(run.series);
+        let encoded = self.encoding.filter(|_| views == self.views).and_then(|thread| thread.join().ok());
+        encoded.unwrap_or_else(|| start_of(run.ending.scenario(), views))
     }
 }
 
-/// The blueprint of a recording of scenario `name`: the layout of `views`.
-fn encoded_blueprint(name: &str, views: RunViews) -> rrd::RrdResult<rrd::EncodedBlueprint> {
+/// The start of a recording of scenario `name`: its blueprint, the layout of `views`.
+fn start_of(name: &str, views: RunViews) -> rrd::RrdResult<rrd::Start> {
     let layout = layout::run_layout(views);
     // Named by the scenario and the layout, so that recordings of one scenario with the same
     // views share one blueprint in the viewer, and ones with other views do not.
     let digest = format!("{layout:?}")
         .bytes()
         .fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
-    rrd::EncodedBlueprint::new(APPLICATION_ID, &format!("{name}-blueprint-{digest:016x}"), &layout)
+    rrd::Start::blueprint(APPLICATION_ID, &format!("{name}-blueprint-{digest:016x}"), &layout)
 }
 
 /// Application id of every recording, a file's and a stream's.
@@ -198,10 +200,14 @@ fn recording_id(run: &Recorded) -> String {
     format!("{}-{digest:016x}", run.ending.scenario())
 }
 
-/// `run` into `file`: each chunk encoded as it is made (and its memory reused for the next),
-/// then the blueprint, `blueprint`'s if it was started ahead of the run.
+/// `run` into `file` after its start, `blueprint`'s where it was encoded ahead of the run: each
+/// chunk encoded as it is made (and its memory reused for the next), then the footer.
 fn write_rrd(file: std::fs::File, run: &Recorded, blueprint: Option<BlueprintInAdvance>) -> Result<(), String> {
-    let mut out = rrd::RrdFile::create(file, APPLICATION_ID, &recording_id(run))?;
+    let start = match blueprint {
+        Some(blueprint) => blueprint.take_for(run)?,
+        None => start_of(run.ending.scenario(), RunViews::of(run.series))?,
+    };
+    let mut out = rrd::RrdFile::create(start, file, &recording_id(run))?;
     let mut encoded = Ok(());
     content::chunks(run, &mut |chunk| {
         if encoded.is_ok() {
@@ -210,11 +216,7 @@ fn write_rrd(file: std::fs::File, run: &Recorded, blueprint: Option<BlueprintInA
     })
     .map_err(|e| e.to_string())?;
     encoded?;
-    let blueprint = match blueprint {
-        Some(blueprint) => blueprint.take_for(run)?,
-        None => encoded_blueprint(run.ending.scenario(), RunViews::of(run.series))?,
-    };
-    out.finish(&blueprint)
+    out.finish()
 }
 
 /// Streams `run` to `viewer`, as a new recording named after its scenario.

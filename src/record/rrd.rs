@@ -5,14 +5,14 @@
 //!
 //! A `RecordingStream` is made for live logging: a batcher, a forwarding and a file-writer thread
 //! per stream, LZ4 on every chunk, a second stream for the blueprint. The file here holds what
-//! that stream would write, in the same messages, as two rrd streams one after the other (rerun's
-//! decoder reads concatenated streams): the recording's ([`RrdFile`]: its store info, one Arrow
-//! message per chunk, rerun's footer, which `rerun rrd verify` requires), then the blueprint's
-//! ([`EncodedBlueprint`]: its views and containers at time 0 of the `blueprint` timeline, as
-//! rerun's `Blueprint` logs them, and the command that activates it). The blueprint's stream has
-//! no footer: a footer's chunk offsets count from its own stream's start, which `rerun rrd
-//! verify` reads as the file's, so only the first stream can carry one. Being a stream of its own,
-//! the blueprint can be encoded on another thread while the run steps.
+//! that stream would write, in the same messages and in the order `with_blueprint` sends them:
+//! the blueprint's store ([`Start`]: its views and containers at time 0 of the `blueprint`
+//! timeline, as rerun's `Blueprint` logs them, and the command that activates it), then the
+//! recording's ([`RrdFile`]: its store info, one Arrow message per chunk), then rerun's footer,
+//! which indexes both stores' chunks and which `rerun rrd verify` and rerun's readers that seek
+//! find at the file's end. The start is encoded in memory before the file is open (on another
+//! thread while the run steps, where the caller wishes); the encoder counts its bytes, so the
+//! footer's offsets are the file's.
 //!
 //! Unlike rerun's streams, nothing here depends on the clock or on randomness: the blueprint's
 //! identifiers derive from its name and the chunks carry no `log_time`, so a run writes the same
@@ -20,6 +20,7 @@
 
 use std::fs::File;
 use std::io::{BufWriter, Write};
+use std::sync::{Arc, Mutex, PoisonError};
 
 use rerun::external::re_log_encoding::{Encoder, EncodingOptions};
 use rerun::external::re_log_types::{
@@ -37,20 +38,47 @@ pub(super) fn text(e: impl std::fmt::Display) -> String {
     e.to_string()
 }
 
-/// One rrd stream being encoded into `W`.
-struct Stream<W: Write> {
-    encoder: Encoder<W>,
+/// The file a recording goes to, once it is open.
+type FileSlot = Arc<Mutex<Option<BufWriter<File>>>>;
+
+/// Where the encoder writes: memory until the file is open, then the file (the memory first).
+struct Sink {
+    memory: Vec<u8>,
+    file: FileSlot,
 }
 
-impl<W: Write> Stream<W> {
-    fn new(out: W) -> RrdResult<Self> {
-        let version = rerun::external::re_build_info::CrateVersion::LOCAL;
-        // Uncompressed: LZ4 doubled the encoding time for a file of 1 MB (`rerun rrd optimize`
-        // compresses one afterwards).
-        let encoder = Encoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, out).map_err(text)?;
-        Ok(Stream { encoder })
+impl Sink {
+    /// Runs `write` on the file once it is open, the memory written to it first; else `None`.
+    fn on_file<T>(
+        &mut self,
+        write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<T>,
+    ) -> Option<std::io::Result<T>> {
+        let mut file = self.file.lock().unwrap_or_else(PoisonError::into_inner);
+        let file = file.as_mut()?;
+        let memory = std::mem::take(&mut self.memory);
+        Some(file.write_all(&memory).and_then(|()| write(file)))
+    }
+}
+
+impl Write for Sink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        self.on_file(|file| file.write(buf)).unwrap_or_else(|| {
+            self.memory.extend_from_slice(buf);
+            Ok(buf.len())
+        })
     }
 
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.on_file(|file| file.flush()).unwrap_or(Ok(()))
+    }
+}
+
+/// One rrd stream being encoded: the blueprint's store, then the recording's.
+struct Stream {
+    encoder: Encoder<Sink>,
+}
+
+impl Stream {
     fn begin_store(&mut self, store: StoreId) -> RrdResult<()> {
         let source = StoreSource::Other(format!("pipearm {}", env!("CARGO_PKG_VERSION")));
         let info = SetStoreInfo { row_id: *RowId::new(), info: StoreInfo::new(store, source) };
@@ -64,26 +92,52 @@ impl<W: Write> Stream<W> {
     fn send_to(&mut self, store: StoreId, chunk: &Chunk) -> RrdResult<()> {
         self.append(&LogMsg::ArrowMsg(store, chunk.to_arrow_msg().map_err(text)?))
     }
+}
 
-    /// Ends the stream (with its footer unless it was turned off) and returns its output.
-    fn finish(mut self) -> RrdResult<W> {
-        self.encoder.finish().map_err(text)?;
-        self.encoder.into_inner().map_err(text)
+/// The start of a recording file, encoded before the file is open: the stream's header and the
+/// blueprint's store, activated (module doc).
+pub struct Start {
+    stream: Stream,
+    file: FileSlot,
+    application_id: &'static str,
+}
+
+impl Start {
+    /// The blueprint `layout` of application `application_id`, in a store named `blueprint_name`
+    /// (the identifiers of its views derive from it).
+    pub fn blueprint(application_id: &'static str, blueprint_name: &str, layout: &BlueprintLayout) -> RrdResult<Self> {
+        let version = rerun::external::re_build_info::CrateVersion::LOCAL;
+        let file = FileSlot::default();
+        let sink = Sink { memory: Vec::new(), file: file.clone() };
+        // Uncompressed: LZ4 doubled the encoding time for a file of 1 MB (`rerun rrd optimize`
+        // compresses one afterwards).
+        let encoder = Encoder::new_eager(version, EncodingOptions::PROTOBUF_UNCOMPRESSED, sink).map_err(text)?;
+        let mut stream = Stream { encoder };
+        let store = StoreId::new(StoreKind::Blueprint, application_id, blueprint_name);
+        stream.begin_store(store.clone())?;
+        let mut ids = 0u8;
+        let root = stream.blueprint_part(&store, blueprint_name, layout, &mut ids)?;
+        let viewport = blueprint::ViewportBlueprint::new().with_root_container(blueprint::RootContainer(root.0.into()));
+        stream.blueprint_row(&store, "viewport", &viewport)?;
+        let activate = BlueprintActivationCommand { blueprint_id: store, make_active: true, make_default: true };
+        stream.append(&LogMsg::BlueprintActivationCommand(activate))?;
+        Ok(Start { stream, file, application_id })
     }
 }
 
-/// A recording file being written: the recording's stream, then the blueprint's (module doc).
+/// A recording file being written after its [`Start`] (module doc).
 pub struct RrdFile {
-    stream: Stream<BufWriter<File>>,
+    stream: Stream,
     recording: StoreId,
 }
 
 impl RrdFile {
-    /// Starts a recording of application `application_id` with id `recording_id` in `file`.
-    pub fn create(file: File, application_id: &'static str, recording_id: &str) -> RrdResult<Self> {
+    /// Continues `start` into `file` with a recording of id `recording_id`.
+    pub fn create(start: Start, file: File, recording_id: &str) -> RrdResult<Self> {
         // 64 kB: the file is written once, front to back; a larger buffer only touches memory.
-        let stream = Stream::new(BufWriter::with_capacity(1 << 16, file))?;
-        let mut out = RrdFile { stream, recording: StoreId::recording(application_id, recording_id) };
+        *start.file.lock().unwrap_or_else(PoisonError::into_inner) = Some(BufWriter::with_capacity(1 << 16, file));
+        let mut out =
+            RrdFile { stream: start.stream, recording: StoreId::recording(start.application_id, recording_id) };
         out.stream.begin_store(out.recording.clone())?;
         Ok(out)
     }
@@ -93,46 +147,25 @@ impl RrdFile {
         self.stream.send_to(self.recording.clone(), chunk)
     }
 
-    /// Writes the recording's footer, then `blueprint`, and flushes the file.
-    pub fn finish(self, blueprint: &EncodedBlueprint) -> RrdResult<()> {
-        let mut writer = self.stream.finish()?;
-        writer.write_all(&blueprint.0).map_err(text)?;
-        writer.flush().map_err(text)
+    /// Writes the footer and flushes the file.
+    pub fn finish(mut self) -> RrdResult<()> {
+        self.stream.encoder.finish().map_err(text)?;
+        let mut sink = self.stream.encoder.into_inner().map_err(text)?;
+        sink.flush().map_err(text)
     }
 }
 
-/// A blueprint encoded as an rrd stream of its own, with no footer (module doc).
-pub struct EncodedBlueprint(Vec<u8>);
-
-impl EncodedBlueprint {
-    /// The blueprint `layout` of application `application_id`, in a store named `name` (the
-    /// identifiers of its views derive from it), activated.
-    pub fn new(application_id: &'static str, name: &str, layout: &BlueprintLayout) -> RrdResult<Self> {
-        let mut stream = Stream::new(Vec::new())?;
-        stream.encoder.do_not_emit_footer();
-        let store = StoreId::new(StoreKind::Blueprint, application_id, name);
-        stream.begin_store(store.clone())?;
-        let mut ids = 0u8;
-        let root = stream.blueprint_part(&store, name, layout, &mut ids)?;
-        let viewport = blueprint::ViewportBlueprint::new().with_root_container(blueprint::RootContainer(root.0.into()));
-        stream.blueprint_row(&store, "viewport", &viewport)?;
-        let activate = BlueprintActivationCommand { blueprint_id: store, make_active: true, make_default: true };
-        stream.append(&LogMsg::BlueprintActivationCommand(activate))?;
-        stream.finish().map(EncodedBlueprint)
-    }
-}
-
-impl Stream<Vec<u8>> {
+impl Stream {
     /// Logs a view or a container (its children first) and returns its id and blueprint path.
     fn blueprint_part(
         &mut self,
         store: &StoreId,
-        name: &str,
+        blueprint_name: &str,
         part: &BlueprintLayout,
         ids: &mut u8,
     ) -> RrdResult<([u8; 16], String)> {
         *ids += 1;
-        let id = blueprint_uuid(name, *ids);
+        let id = blueprint_uuid(blueprint_name, *ids);
         match part {
             BlueprintLayout::View { class, name, origin, eye } => {
                 let path = format!("view/{}", uuid_text(&id));
@@ -155,7 +188,7 @@ impl Stream<Vec<u8>> {
             BlueprintLayout::Horizontal(children) | BlueprintLayout::Vertical(children) => {
                 let mut paths = Vec::with_capacity(children.len());
                 for child in children {
-                    let (_, path) = self.blueprint_part(store, name, child, ids)?;
+                    let (_, path) = self.blueprint_part(store, blueprint_name, child, ids)?;
                     paths.push(blueprint::IncludedContent(format!("/{path}").into()));
                 }
                 let kind = match part {

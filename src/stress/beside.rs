@@ -140,13 +140,6 @@ impl Completer {
     }
 }
 
-/// Whether this process may run on more than one core (its affinity and cgroup quota read
-/// once: reading them takes file reads).
-fn second_core() -> bool {
-    static SECOND_CORE: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *SECOND_CORE.get_or_init(|| std::thread::available_parallelism().is_ok_and(|n| n.get() > 1))
-}
-
 /// The worker completing a run's chunks, with the emptied chunks it hands back for reuse.
 #[derive(Debug)]
 pub(super) struct Worker {
@@ -159,7 +152,7 @@ impl Worker {
     /// A worker with `completer` taking `evaluated` on, or `evaluated` back where it should not
     /// run (inside rayon's pool, or with one core to run on) or cannot (no thread to be had).
     pub fn start(mut completer: Completer, evaluated: Evaluated) -> Result<Self, Box<Evaluated>> {
-        if rayon::current_thread_index().is_some() || !second_core() {
+        if !crate::cores::spare() {
             return Err(Box::new(evaluated));
         }
         let (to_worker, recorded) = channel::<Recorded>();
