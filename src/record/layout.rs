@@ -1,5 +1,5 @@
-//! The view a recording opens with, as data: written into a file by [`super::rrd`] and sent to a
-//! viewer through `rerun::blueprint` by [`super::stream`].
+//! The view a recording opens with, as data: logged as a blueprint of rerun's by
+//! [`super::blueprint`], which a file starts with and a stream to a viewer sends.
 
 /// Views (rerun's class identifiers: `3D`, `TimeSeries`, `TextLog`) in horizontal and vertical
 /// containers.

@@ -44,6 +44,7 @@
 
 use std::path::Path;
 
+mod blueprint;
 mod content;
 mod layout;
 mod rrd;
@@ -136,7 +137,7 @@ pub fn write_recording(path: &Path, summary: &RunSummary, series: &Series) -> Re
 pub struct BlueprintInAdvance {
     views: RunViews,
     /// The encoding thread; none where no core is spare (it is encoded at the save then).
-    encoding: Option<std::thread::JoinHandle<rrd::RrdResult<rrd::Start>>>,
+    encoding: Option<std::thread::JoinHandle<RrdResult<rrd::Start>>>,
 }
 
 impl BlueprintInAdvance {
@@ -151,7 +152,7 @@ impl BlueprintInAdvance {
 
     /// The start of `run`'s file: the one encoded in advance if its views are `run`'s and its
     /// thread finished it, else encoded here.
-    fn take_for(self, run: &Recorded) -> rrd::RrdResult<rrd::Start> {
+    fn take_for(self, run: &Recorded) -> RrdResult<rrd::Start> {
         let views = RunViews::of(run.series);
         let encoded = self.encoding.filter(|_| views == self.views).and_then(|thread| thread.join().ok());
         encoded.unwrap_or_else(|| start_of(run.ending.scenario(), views))
@@ -159,14 +160,15 @@ impl BlueprintInAdvance {
 }
 
 /// The start of a recording of scenario `name`: its blueprint, the layout of `views`.
-fn start_of(name: &str, views: RunViews) -> rrd::RrdResult<rrd::Start> {
-    let layout = layout::run_layout(views);
-    // Named by the scenario and the layout, so that recordings of one scenario with the same
-    // views share one blueprint in the viewer, and ones with other views do not.
-    let digest = format!("{layout:?}")
-        .bytes()
-        .fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
-    rrd::Start::blueprint(APPLICATION_ID, &format!("{name}-blueprint-{digest:016x}"), &layout)
+fn start_of(name: &str, views: RunViews) -> RrdResult<rrd::Start> {
+    rrd::Start::with(APPLICATION_ID, &blueprint::BlueprintMessages::new(APPLICATION_ID, name, views)?)
+}
+
+/// An error from rerun's chunk builder or encoder, as text (their error types are many).
+type RrdResult<T> = Result<T, String>;
+
+fn text(e: impl std::fmt::Display) -> String {
+    e.to_string()
 }
 
 /// Application id of every recording, a file's and a stream's.
@@ -227,7 +229,7 @@ pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordErr
         .map_err(|source| RecordError::Stream { target: target.clone(), source })?;
     let out = stream::to_viewer(viewer, run.ending.scenario())?;
     out.send_chunks(chunks);
-    stream::finish(out, &target, RunViews::of(run.series))
+    stream::finish(out, &target, run.ending.scenario(), RunViews::of(run.series))
 }
 
 /// Moves the complete file `tmp` to `path`. The old file is removed first: renamed over, ext4

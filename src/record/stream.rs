@@ -1,13 +1,11 @@
 //! A run streamed to a viewer on rerun's public `RecordingStream`, the viewer reached as rerun's
 //! own tools reach one (`--connect [URL]`, `--spawn`).
 
-use rerun::blueprint::{
-    Blueprint, BlueprintActivation, ContainerLike, Horizontal, Spatial3DView, TextLogView, TimeSeriesView, Vertical,
-};
 use rerun::log::ChunkBatcherConfig;
 use rerun::{RecordingStream, RecordingStreamBuilder};
 
-use super::layout::{BlueprintLayout, RunViews, run_layout};
+use super::blueprint::BlueprintMessages;
+use super::layout::RunViews;
 use super::{APPLICATION_ID, RecordError};
 
 /// A viewer to stream a run to.
@@ -71,39 +69,24 @@ fn check_listening(url: &str) -> Result<(), RecordError> {
 /// How long a viewer's port may take to accept a connection.
 const CONNECT_TIMEOUT: std::time::Duration = std::time::Duration::from_secs(1);
 
-/// Ends a stream: its data through the sink, then the blueprint and the command that activates
-/// it (last, as in a file), and closes it. A viewer that stops answering fails the flush after
-/// rerun's connection timeout (5 s).
-pub(super) fn finish(stream: RecordingStream, target: &str, views: RunViews) -> Result<(), RecordError> {
+/// Ends a stream: its data through the sink, then the blueprint of a run of `scenario` with
+/// `views` and the command that activates it ([`super::blueprint`], as a file has them), and
+/// closes it. A viewer that stops answering fails the flush after rerun's connection timeout
+/// (5 s).
+pub(super) fn finish(
+    stream: RecordingStream,
+    target: &str,
+    scenario: &str,
+    views: RunViews,
+) -> Result<(), RecordError> {
     let flush = |stream: &RecordingStream| {
         stream.flush_blocking().map_err(|source| RecordError::Flush { target: target.to_string(), source })
     };
     flush(&stream)?;
-    blueprint(views)
-        .send(&stream, BlueprintActivation { make_active: true, make_default: true })
-        .map_err(|source| RecordError::Stream { target: target.to_string(), source })?;
+    let blueprint = BlueprintMessages::new(APPLICATION_ID, scenario, views)
+        .map_err(|message| RecordError::Rrd { path: target.to_string(), message })?;
+    stream.send_blueprint(blueprint.messages, blueprint.activation);
     flush(&stream)?;
     drop(stream);
     Ok(())
-}
-
-/// The run's layout as rerun's blueprint.
-fn blueprint(views: RunViews) -> Blueprint {
-    match to_rerun(run_layout(views)) {
-        ContainerLike::View(view) => Blueprint::new(view),
-        root => Blueprint::new(root),
-    }
-}
-
-fn to_rerun(part: BlueprintLayout) -> ContainerLike {
-    match part {
-        // rerun's SDK sets no camera on a 3D view: the viewer frames the scene itself.
-        BlueprintLayout::View { class: "3D", name, origin, .. } => Spatial3DView::new(name).with_origin(origin).into(),
-        BlueprintLayout::View { class: "TextLog", name, origin, .. } => {
-            TextLogView::new(name).with_origin(origin).into()
-        }
-        BlueprintLayout::View { name, origin, .. } => TimeSeriesView::new(name).with_origin(origin).into(),
-        BlueprintLayout::Horizontal(children) => Horizontal::new(children.into_iter().map(to_rerun)).into(),
-        BlueprintLayout::Vertical(children) => Vertical::new(children.into_iter().map(to_rerun)).into(),
-    }
 }
