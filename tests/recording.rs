@@ -118,21 +118,27 @@ fn the_recording_holds_the_scene_and_the_exact_peak_force() {
     }
 }
 
-/// The file `pipearm run` writes, decoded: every message (its blueprint encoded while the run
-/// steps).
-fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) {
+/// The file `pipearm run` writes for the default scene (its blueprint encoded while the run
+/// steps), with the run's summary.
+fn as_pipearm_run_writes_it(tag: &str) -> (pipearm::run::RunSummary, Vec<u8>) {
     let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
     let options = RunOptions { capture_frames: true, ..RunOptions::default() };
     let compiled = CompiledModel::new(&scenario.model, options.fidelity, &scenario.compiler).unwrap();
     let blueprint = BlueprintInAdvance::start(&compiled, &options);
     let (summary, series) = run_compiled(&compiled, &options);
     let summary = summary.unwrap();
-    let path = std::env::temp_dir().join(format!("pipearm-blueprint-{}.rrd", std::process::id()));
+    let path = std::env::temp_dir().join(format!("pipearm-{tag}-{}.rrd", std::process::id()));
     let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
     save_recording(&path, &run, Some(blueprint)).unwrap();
-    let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
-    let messages = re_log_encoding::DecoderApp::decode_eager(file).unwrap().map(Result::unwrap).collect();
+    let bytes = std::fs::read(&path).unwrap();
     std::fs::remove_file(&path).ok();
+    (summary, bytes)
+}
+
+/// The file `pipearm run` writes, decoded: every message.
+fn recorded_messages() -> (pipearm::run::RunSummary, Vec<re_log_types::LogMsg>) {
+    let (summary, bytes) = as_pipearm_run_writes_it("blueprint");
+    let messages = re_log_encoding::DecoderApp::decode_eager(&bytes[..]).unwrap().map(Result::unwrap).collect();
     (summary, messages)
 }
 
@@ -209,17 +215,7 @@ fn the_blueprint_is_complete_and_activated_and_the_events_are_timed() {
 #[test]
 fn the_footer_at_the_files_end_finds_every_chunk_where_it_lies() {
     use re_log_encoding::{Decodable as _, StreamFooter, ToApplication as _};
-    let scenario = Scenario::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/default.toml")).unwrap();
-    let options = RunOptions { capture_frames: true, ..RunOptions::default() };
-    let compiled = CompiledModel::new(&scenario.model, options.fidelity, &scenario.compiler).unwrap();
-    let blueprint = BlueprintInAdvance::start(&compiled, &options);
-    let (summary, series) = run_compiled(&compiled, &options);
-    let summary = summary.unwrap();
-    let path = std::env::temp_dir().join(format!("pipearm-footer-{}.rrd", std::process::id()));
-    let run = Recorded { series: &series, ending: Ending::Finished(&summary), overlay: &[] };
-    save_recording(&path, &run, Some(blueprint)).unwrap();
-    let bytes = std::fs::read(&path).unwrap();
-    std::fs::remove_file(&path).ok();
+    let (_, bytes) = as_pipearm_run_writes_it("footer");
 
     let stream_footer = StreamFooter::from_rrd_bytes(&bytes[bytes.len() - StreamFooter::ENCODED_SIZE_BYTES..]);
     let span = stream_footer.expect("a stream footer at the file's end").entries[0]
