@@ -221,13 +221,14 @@ fn write_rrd(file: std::fs::File, run: &Recorded, blueprint: Option<BlueprintInA
     out.finish()
 }
 
-/// Streams `run` to `viewer`, as a new recording named after its scenario.
+/// Streams `run` to `viewer`, as a new recording named as its file is (its scenario, model and
+/// largest peak force).
 pub fn stream_recording(viewer: &Viewer, run: &Recorded) -> Result<(), RecordError> {
     let target = viewer.to_string();
     let mut chunks = Vec::new();
     content::chunks(run, &mut |chunk| chunks.push(chunk))
         .map_err(|source| RecordError::Stream { target: target.clone(), source })?;
-    let out = stream::to_viewer(viewer, run.ending.scenario())?;
+    let out = stream::to_viewer(viewer)?;
     out.send_chunks(chunks);
     stream::finish(out, &target, run.ending.scenario(), RunViews::of(run.series))
 }

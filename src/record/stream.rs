@@ -27,16 +27,18 @@ impl std::fmt::Display for Viewer {
     }
 }
 
-/// A stream to `viewer`, as a new recording named `name`.
+/// A stream to `viewer`, as a new recording. Its name is the run's chunk of recording
+/// properties, as in a file ([`super::content`]): the stream sends none of its own, which, made
+/// after the run's chunks, would name the recording anew.
 ///
 /// The run arrives all at once as whole chunks, which the batcher passes straight through, so it
 /// never flushes on its own (no timer, no size threshold) whatever the `RERUN_FLUSH_*` variables
 /// say; [`finish`] flushes. Enabled whatever `RERUN` says: the stream was asked for.
-pub(super) fn to_viewer(viewer: &Viewer, name: &str) -> Result<RecordingStream, RecordError> {
+pub(super) fn to_viewer(viewer: &Viewer) -> Result<RecordingStream, RecordError> {
     let builder = RecordingStreamBuilder::new(APPLICATION_ID)
         .enabled(true)
         .batcher_config(ChunkBatcherConfig::NEVER)
-        .recording_name(name);
+        .send_properties(false);
     let stream = match viewer {
         Viewer::Connect(url) => {
             check_listening(url)?;
