@@ -1,18 +1,17 @@
-//! An `.rrd` file written with no `RecordingStream`: the one place that uses rerun's internal
-//! types (`re_log_encoding`, `re_log_types`, the blueprint archetypes of `re_sdk_types`, all
-//! through `rerun::external`), because rerun's public path to a file costs a third of the default
-//! run (docs/recording.md, "How it is written").
+//! An `.rrd` file written with no `RecordingStream`, by rerun's internal encoder
+//! (`re_log_encoding`, through `rerun::external`; the blueprint's messages come from
+//! [`super::blueprint`]), because rerun's public path to a file costs a third of the default run
+//! (docs/recording.md, "How it is written").
 //!
 //! A `RecordingStream` is made for live logging: a batcher, a forwarding and a file-writer thread
 //! per stream, LZ4 on every chunk, a second stream for the blueprint. The file here holds what
 //! that stream would write, in the same messages and in the order `with_blueprint` sends them:
 //! the blueprint's store ([`Start`]: [`super::blueprint`]'s messages and the command that
-//! activates it), then the
-//! recording's ([`RrdFile`]: its store info, one Arrow message per chunk), then rerun's footer,
-//! which indexes both stores' chunks and which `rerun rrd verify` and rerun's readers that seek
-//! find at the file's end. The start is encoded in memory before the file is open (on another
-//! thread while the run steps, where the caller wishes); the encoder counts its bytes, so the
-//! footer's offsets are the file's.
+//! activates it), then the recording's ([`RrdFile`]: its store info, one Arrow message per
+//! chunk), then rerun's footer, which indexes both stores' chunks and which `rerun rrd verify`
+//! and rerun's readers that seek find at the file's end. The start is encoded in memory before
+//! the file is open (on another thread while the run steps, where the caller wishes); the encoder
+//! counts its bytes, so the footer's offsets are the file's.
 //!
 //! Unlike rerun's streams, nothing here depends on the clock or on randomness: the chunks carry
 //! no `log_time`, so a run writes the same entities, times and values every time.
