@@ -30,9 +30,7 @@ impl BlueprintMessages {
     /// `views`.
     pub fn new(application_id: &'static str, scenario: &str, views: RunViews) -> RrdResult<Self> {
         let layout = run_layout(views);
-        let digest = format!("{layout:?}")
-            .bytes()
-            .fold(0xcbf2_9ce4_8422_2325_u64, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3));
+        let digest = crate::sweep::plan::fnv1a64(&[format!("{layout:?}").as_bytes()]);
         let name = format!("{scenario}-blueprint-{digest:016x}");
         let store = StoreId::new(StoreKind::Blueprint, application_id, name.as_str());
         let mut builder = Builder { messages: vec![store_info(store.clone())], store, name, parts: 0 };
