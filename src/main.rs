@@ -13,7 +13,7 @@ use clap::{Parser, Subcommand};
 use pipearm::arm::Fidelity;
 use pipearm::record::{BlueprintInAdvance, Ending, Recorded, Viewer, save_recording, stream_recording, write_summary};
 use pipearm::regression::{baseline_path, blessed, compare, read_baseline, setting_changes, write_baseline};
-use pipearm::run::{CompiledModel, RunOptions, RunSummary, run, run_compiled};
+use pipearm::run::{RunOptions, RunSummary, run_compiled};
 use pipearm::scenario::Scenario;
 use pipearm::scene::SceneError;
 
@@ -306,11 +306,9 @@ fn run_command(path: &Path, overrides: &Overrides, options: RunOptions, outputs:
     }
     let started = std::time::Instant::now();
     let scenario = overrides.load(path)?;
-    let model = &scenario.model;
     let running = || format!("{}: running", path.display());
-    let compiled = CompiledModel::new(model, options.fidelity, &scenario.compiler)
-        .map_err(SceneError::from)
-        .with_context(running)?;
+    let compiled = scenario.compile(options.fidelity)?;
+    let model: &pipearm::model::Model = &compiled.model;
     // The recording's blueprint is encoded on a second thread while the run steps.
     let blueprint = outputs.files.map(|_| BlueprintInAdvance::start(&compiled, &options));
     let (result, series) = run_compiled(&compiled, &options);
@@ -444,7 +442,9 @@ fn check(
     for path in &scenarios {
         let scenario = Overrides { model, ..Overrides::default() }.load(path)?;
         let name = scenario.model.name.clone();
-        let (summary, _) = run(&scenario.model, model).with_context(|| format!("{}: running", path.display()))?;
+        let compiled = scenario.compile(model)?;
+        let options = RunOptions { fidelity: model, ..RunOptions::default() };
+        let summary = run_compiled(&compiled, &options).0.with_context(|| format!("{}: running", path.display()))?;
         let file = baseline_path(baselines, &name);
         if bless {
             let previous = read_baseline(&file, &name, path).ok();

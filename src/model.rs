@@ -19,7 +19,7 @@ use crate::actuator::{Actuator, ActuatorPlant};
 use crate::arm::{ArmError, ArmModel, ArmOptions, Fidelity, HubDrive, STANDARD_GRAVITY_M_S2};
 use crate::beam::{BeamError, BeamModel, BeamSpec, ConcentratedMass, MemberPiece, MemberSpec, SectionShape, Segment};
 use crate::contact::ForceLaw;
-use crate::drive::MotionProfile;
+use crate::drive::{MotionProfile, Shaper};
 use crate::integrate::IntegratorKind;
 use crate::robot::{PipeString, Robot};
 
@@ -158,6 +158,10 @@ pub struct Drive {
     /// The modes an input shaper on the motion was tuned to when they were found rather than
     /// given, with their shares of the residual ([`crate::tuning`]); empty otherwise.
     pub shaper_tuning: Vec<TunedMode>,
+    /// An input shaper to tune to the arm's modes when the model is compiled
+    /// ([`crate::tuning::tuned`]): `motion` is then the unshaped move, which the compiled model
+    /// replaces by the shaped one (within the same duration).
+    pub shaper_to_tune: Option<Shaper>,
 }
 
 /// A mode a drive's input shaper was tuned to, found by [`crate::tuning`].

@@ -337,7 +337,7 @@ pub fn run_reusing(
 
 /// Runs a model with `options` and returns its series whether it finished or not: up to the
 /// divergence for a run the guard stopped (empty if the scene could not be built). It takes
-/// what `compiler` kept (a scenario's checks compile the arm its run takes: `Scenario::compiler`).
+/// what `compiler` kept from earlier compiles that it shares.
 pub fn run_partial(
     model: &Model,
     options: &RunOptions,
@@ -345,7 +345,7 @@ pub fn run_partial(
 ) -> (Result<RunSummary, SceneError>, Series) {
     match CompiledModel::new(model, options.fidelity, compiler) {
         Ok(compiled) => run_compiled(&compiled, options),
-        Err(error) => (Err(error.into()), Series::default()),
+        Err(error) => (Err(error), Series::default()),
     }
 }
 
@@ -364,7 +364,7 @@ pub fn run_compiled(compiled: &CompiledModel, options: &RunOptions) -> (Result<R
 
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
 fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
-    let model = compiled.model;
+    let model: &Model = &compiled.model;
     let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, fastest_rad_s } = &compiled.arm;
     let fastest_rad_s = *fastest_rad_s;
     let mut scene = Scene::with_arm(model, arm.clone())?;

@@ -10,6 +10,7 @@ mod actuator;
 mod capacity;
 mod checks;
 mod clamp;
+mod compile;
 mod drive;
 mod grips;
 mod loop_advice;
@@ -31,6 +32,7 @@ use crate::model::{
     Clamp, ContactOptions, Drive, FrictionClamp, HeldString, Model, Payload, PhysicsOptions, TimeOptions,
 };
 use crate::robot::{PipeString, Robot, RobotError, StringSpec, load_robot};
+use crate::scene::SceneError;
 use crate::sensor::{SensorKind, SensorSpec};
 
 pub use actuator::ActuatorSpec;
@@ -87,6 +89,9 @@ pub enum ScenarioError {
     /// A value outside its allowed range.
     #[error("{path}: key `{key}`: {message}")]
     Invalid { path: PathBuf, key: String, message: String },
+    /// Compiling it for its runs ([`Scenario::compile`]): its shaper's tuning or its arm.
+    #[error("{path}: {error}")]
+    Compile { path: PathBuf, error: SceneError },
     /// In the robot the scenario names.
     #[error("{path}: robot: {error}")]
     Robot { path: PathBuf, error: RobotError },
@@ -283,16 +288,18 @@ pub struct Scenario {
     pub path: PathBuf,
     /// What the file says.
     pub spec: ScenarioSpec,
-    /// The machine and scene it describes, resolved.
+    /// The machine and scene it describes, resolved and checked; a shaper tuned by default is
+    /// tuned when it is compiled ([`Scenario::compile`]).
     pub model: Model,
-    /// What its checks compiled (the arm the run takes, the shaper's tuning arm), kept for its
-    /// runs to take ([`crate::run::run_reusing`]); one for all the scenarios of a sweep, design
-    /// or fit.
+    /// What its compile derives (the beam and its modes, the arm at its fidelity, the shaper's
+    /// tuning arm) goes through this, kept for the next: one for all the scenarios of a sweep,
+    /// design or fit.
     pub compiler: Arc<Compiler>,
 }
 
 impl Scenario {
-    /// Reads, checks and resolves a scenario file and the robot it names.
+    /// Reads, checks and resolves a scenario file and the robot it names: no eigenproblem and no
+    /// simulation (those are its compile's, [`Scenario::compile`]).
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
         Self::from_spec(path, Self::read_spec(path)?)
     }
@@ -341,15 +348,15 @@ impl Scenario {
         Self::from_spec_and_robot_sharing(path, spec, robot, &Arc::new(Compiler::new()))
     }
 
-    /// [`Scenario::from_spec_and_robot`], its checks compiling through `compiler`, which the
-    /// scenario keeps: the scenarios of a sweep share what their checks and runs compile.
+    /// [`Scenario::from_spec_and_robot`], compiling through `compiler`, which the scenario keeps:
+    /// the scenarios of a sweep share what their compiles derive.
     pub fn from_spec_and_robot_sharing(
         path: &Path,
         spec: ScenarioSpec,
         robot: Robot,
         compiler: &Arc<Compiler>,
     ) -> Result<Self, ScenarioError> {
-        Self::resolve(Check { path, capacity: true, compiler }, spec, robot)
+        Self::resolve(Check { path, capacity: true }, spec, robot, compiler)
     }
 
     /// Reads, checks and resolves a scenario file as [`Scenario::load`] does, but for its payload
@@ -357,10 +364,15 @@ impl Scenario {
     pub fn load_beyond_capacity(path: &Path) -> Result<Self, ScenarioError> {
         let spec = Self::read_spec(path)?;
         let robot = Self::load_robot(path, &spec)?;
-        Self::resolve(Check { path, capacity: false, compiler: &Arc::new(Compiler::new()) }, spec, robot)
+        Self::resolve(Check { path, capacity: false }, spec, robot, &Arc::new(Compiler::new()))
     }
 
-    fn resolve(check: Check, spec: ScenarioSpec, mut robot: Robot) -> Result<Self, ScenarioError> {
+    fn resolve(
+        check: Check,
+        spec: ScenarioSpec,
+        mut robot: Robot,
+        compiler: &Arc<Compiler>,
+    ) -> Result<Self, ScenarioError> {
         let path = check.path;
         if let Some(ratios) = &spec.arm.damping_ratios {
             robot.arm.damping_ratios = check.damping_ratios(ratios)?;
@@ -383,7 +395,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator, shaper_tuning: Vec::new() },
+            drive: Drive { motion, actuator, shaper_tuning: Vec::new(), shaper_to_tune: None },
             dampeners: dampeners?,
             structures,
             contact: spec.contact,
@@ -396,11 +408,11 @@ impl Scenario {
             checks,
         };
         if let Some(request) = spec.drive.shaping() {
-            (model.drive.motion, model.drive.shaper_tuning) = check.shaped(&spec.drive, request, &model)?;
+            (model.drive.motion, model.drive.shaper_to_tune) = check.shaped(&spec.drive, request, &model)?;
         }
         check.model(&model)?;
         check.structures_clear(&model)?;
-        Ok(Scenario { path: path.into(), spec, model, compiler: check.compiler.clone() })
+        Ok(Scenario { path: path.into(), spec, model, compiler: compiler.clone() })
     }
 }
 
@@ -409,8 +421,6 @@ struct Check<'a> {
     path: &'a Path,
     /// Whether the payload is checked against the machine's capacity.
     capacity: bool,
-    /// What the checks compile through (the closed loop's arm, the shaper's tuning arm).
-    compiler: &'a Arc<Compiler>,
 }
 
 impl Check<'_> {

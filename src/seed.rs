@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use plotters::prelude::*;
 use rayon::prelude::*;
 
-use crate::run::{RunOptions, RunSummary, Series, run_with};
+use crate::run::{RunOptions, RunSummary, Series, run_compiled};
 use crate::scenario::Scenario;
 use crate::scene::SceneError;
 
@@ -59,7 +59,9 @@ pub fn run_family(files: &[PathBuf], capture_frames: bool) -> Result<Vec<Variant
         .map(|path| {
             let scenario = Scenario::load(path)?;
             let options = RunOptions { capture_frames, ..RunOptions::default() };
-            let (summary, series) = run_with(&scenario.model, &options)?;
+            let compiled = scenario.compile(None)?;
+            let (summary, series) = run_compiled(&compiled, &options);
+            let summary = summary?;
             let name = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
             Ok(Variant { name, scenario, summary, series })
         })

@@ -24,11 +24,13 @@
 //! reach); the shaper is tuned to the modes of largest share until those left carry at most
 //! [`LEFT_SHARE`] of every output's.
 
+use std::borrow::Cow;
+
 use nalgebra::{Complex, DMatrix, DVector};
 
 use crate::arm::{ArmError, ArmModel, ArmSimulation, Fidelity, LinearSystem};
 use crate::compile::Compiler;
-use crate::drive::MotionProfile;
+use crate::drive::{DriveError, MotionProfile, ShaperMode};
 use crate::model::{Model, TunedMode};
 
 /// The share of every output's residual the modes left unshaped may carry together.
@@ -65,6 +67,53 @@ pub fn shaper_modes(model: &Model, compiler: &Compiler) -> Result<Vec<TunedMode>
     let outputs = output_rows(model, &sim.arm, &system);
     let residuals = modal_residuals(&system, &outputs, &model.drive.motion);
     Ok(pick(&residuals))
+}
+
+/// Why a model's shaper could not be tuned; each names the scenario key that settles it.
+#[derive(Debug, thiserror::Error)]
+pub enum TuningError {
+    /// The arm cannot be built or linearised at the end of the drive's path.
+    #[error("the arm's modes at the end of the path cannot be computed ({0}): set drive.shaper_hz")]
+    Modes(#[source] ArmError),
+    /// The linearised arm does not oscillate.
+    #[error("the arm with its drive has no oscillating mode at the end of the path: set drive.shaper_hz")]
+    NoOscillatingMode,
+    /// The shaped move cannot be built in the drive's duration.
+    #[error("{0}")]
+    Drive(#[source] DriveError),
+}
+
+impl TuningError {
+    /// The scenario key that settles it.
+    pub fn key(&self) -> String {
+        match self {
+            TuningError::Modes(_) | TuningError::NoOscillatingMode => "drive.shaper".into(),
+            TuningError::Drive(DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) => {
+                format!("drive.{}", name.replace("_rad", "_deg"))
+            }
+        }
+    }
+}
+
+/// `model` with the shaper its drive asks to tune ([`crate::model::Drive::shaper_to_tune`])
+/// tuned to the modes [`shaper_modes`] finds and its motion shaped within the same duration;
+/// `model` itself if it asks for none.
+///
+/// # Errors
+/// [`TuningError`].
+pub fn tuned<'a>(model: &'a Model, compiler: &Compiler) -> Result<Cow<'a, Model>, TuningError> {
+    let Some(shaper) = model.drive.shaper_to_tune else { return Ok(Cow::Borrowed(model)) };
+    let found = shaper_modes(model, compiler).map_err(TuningError::Modes)?;
+    if found.is_empty() {
+        return Err(TuningError::NoOscillatingMode);
+    }
+    let modes: Vec<ShaperMode> =
+        found.iter().map(|m| ShaperMode { frequency_hz: m.frequency_hz, damping_ratio: m.damping_ratio }).collect();
+    let mut tuned = model.clone();
+    tuned.drive.motion = model.drive.motion.shaped_within(shaper, &modes).map_err(TuningError::Drive)?;
+    tuned.drive.shaper_tuning = found;
+    tuned.drive.shaper_to_tune = None;
+    Ok(Cow::Owned(tuned))
 }
 
 /// Rows over the linear state: the tip deflection, each pad's station across the arm (with the

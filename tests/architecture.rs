@@ -229,6 +229,46 @@ fn the_run_takes_its_arm_compiled() {
     assert!(read > 20, "{read} files read: the list lost its modules");
 }
 
+/// Reading a scenario checks its file and resolves its model; what needs the arm's modes — the
+/// shaper's default tuning, the arm at its fidelity, the closed loop's poles — is its compile's
+/// (`scenario/compile.rs`, through `run::CompiledModel`, and the loop's advice it asks for):
+/// the reader solves no eigenproblem, reduces no arm and simulates nothing.
+#[test]
+fn reading_a_scenario_solves_no_eigenproblem() {
+    let derived = [
+        "symmetric_eigen",
+        "eigenvalues",
+        ".modes()",
+        "with_modes(",
+        "ArmModel::new",
+        "ArmSimulation",
+        "linear_poles",
+        "linearised",
+        "compile_arm",
+        "compiler.beam",
+        "compiler.arm",
+        "compiler.choice",
+        "CompiledModel",
+        "tuning::",
+        "run::",
+    ];
+    let compiling = ["scenario/compile.rs", "scenario/loop_advice.rs"];
+    let mut read = 0;
+    for file in rust_files(&src()) {
+        let rel = file.strip_prefix(src()).unwrap().to_path_buf();
+        let reader = rel.starts_with("scenario.rs") || rel.starts_with("scenario");
+        if !reader || compiling.iter().any(|c| rel.ends_with(c)) {
+            continue;
+        }
+        read += 1;
+        let code = code_of(&std::fs::read_to_string(&file).unwrap());
+        for pattern in derived {
+            assert!(!code.contains(pattern), "{}: `{pattern}`", rel.display());
+        }
+    }
+    assert!(read >= 10, "{read} files read: the list lost the reader's modules");
+}
+
 #[test]
 fn the_dispatch_check_sees_through_formatting_but_not_into_comments() {
     let code = code_of("if piece.name == \"string\" { } // x.as_any()\n");

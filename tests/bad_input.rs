@@ -346,6 +346,25 @@ fn shaper_keys_are_checked_naming_the_key() {
     assert!(m.contains("drive.shaper_damping_ratio") && m.contains("drive.shaper_hz"), "{m}");
 }
 
+/// A shaper tuned by default finds its modes when the scenario is compiled, and shortens the
+/// base move by its length: the joint's velocity limit is checked again on the shaped move,
+/// before the run, naming the file and the key, writing nothing.
+#[test]
+fn a_tuned_shaper_that_speeds_the_move_past_the_joints_limit_is_refused_before_the_run() {
+    // 90 deg in 7 s with ramps of a fifth peaks at 16.1 deg/s, inside the joint's 0.3 rad/s
+    // (17.2 deg/s); ZVD on the arm's 2.85 and 5.1 Hz modes lasts about 0.55 s, and the base move
+    // in the 6.45 s left peaks at 17.4 deg/s.
+    let seven = |shaper: &'static str| {
+        move |t: String| t.replace("duration_s = 15.0\n", &format!("duration_s = 7.0\n{shaper}"))
+    };
+    let unshaped = edited_default("tuned-speed-unshaped", seven(""));
+    let loaded = Scenario::load(&unshaped);
+    std::fs::remove_file(&unshaped).ok();
+    assert!(loaded.is_ok(), "{:?}", loaded.err());
+    let m = refused_run("tuned-speed", seven("shaper = \"zvd\"\n"), same);
+    assert!(m.contains("drive.duration_s") && m.contains("velocity limit"), "{m}");
+}
+
 #[test]
 fn grips_off_the_string_beyond_the_arm_or_on_one_another_are_named() {
     let grips = |g: &'static str| {

@@ -10,8 +10,9 @@ use std::process::Command;
 use pipearm::compare::align::interpolate;
 use pipearm::compare::overlay::measured_chunks;
 use pipearm::compare::{CompareOptions, compare, measurable_channels};
+use pipearm::compile::Compiler;
 use pipearm::model::Model;
-use pipearm::run::run;
+use pipearm::run::{CompiledModel, run};
 use pipearm::scenario::Scenario;
 use pipearm::sensor::SensorSpec;
 
@@ -80,7 +81,8 @@ fn a_run_against_its_own_shifted_channels() {
     let csv = dir.join("rig.csv");
     std::fs::write(&csv, own_channels_csv(&model, shift_s)).unwrap();
     let measured = pipearm::measured::read(&csv).unwrap();
-    let aligned = compare(&model, &measured, &CompareOptions { shift: true, ..CompareOptions::default() }).unwrap();
+    let compiled = CompiledModel::new(&model, None, &Compiler::new()).unwrap();
+    let aligned = compare(&compiled, &measured, &CompareOptions { shift: true, ..CompareOptions::default() }).unwrap();
     let c = &aligned.comparison;
     let found = c.shift_s.unwrap();
     common::validated_abs(
@@ -114,7 +116,7 @@ fn a_run_against_its_own_shifted_channels() {
     assert!((3.5..5.5).contains(&tip.frequency_measured_hz) && tip.log_decrement_measured > 0.0, "{tip:?}");
     eprintln!("shift found {found} s (true {shift_s} s)\n{}", pipearm::compare::table(c));
     // Unshifted, the same file is off by the shift: the errors show it.
-    let unshifted = compare(&model, &measured, &CompareOptions::default()).unwrap().comparison;
+    let unshifted = compare(&compiled, &measured, &CompareOptions::default()).unwrap().comparison;
     assert_eq!(unshifted.shift_s, None);
     let hand = unshifted.signals.iter().find(|s| s.signal == "hand.transverse").unwrap();
     assert!(hand.rms_error_over_peak > 100.0 * c.signals[0].rms_error_over_peak, "{hand:?}");

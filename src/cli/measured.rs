@@ -17,10 +17,11 @@ pub fn compare_command(
 ) -> Result<()> {
     let scenario = super::overrides::Overrides { model: options.fidelity, ..Default::default() }.load(path)?;
     let measured = pipearm::measured::read(measured)?;
-    let model = &scenario.model;
+    let compiled = scenario.compile(options.fidelity)?;
+    let model: &pipearm::model::Model = &compiled.model;
     let defs = pipearm::run::measurable_channels(model);
     note_renamed(&measured, &defs);
-    let compared = pipearm::compare::compare(model, &measured, &options)?;
+    let compared = pipearm::compare::compare(&compiled, &measured, &options)?;
     print!("{}", pipearm::compare::table(&compared.comparison));
     let overlay =
         pipearm::compare::overlay::measured_chunks(&measured, &compared.columns, &compared.comparison, &defs)?;

@@ -1,7 +1,7 @@
 //! What `pipearm run`, `check` and `compare` may override of a scenario on the command line,
-//! applied to the file's own text before it is checked and resolved: the scenario's checks (an
-//! explicit integrator's stable step, an actuator's loop at the step and at the model's poles)
-//! see the values that will run.
+//! applied to the file's own text before it is checked, resolved and compiled: the scenario's
+//! checks (an explicit integrator's stable step, an actuator's loop at the step and at the model's
+//! poles, when it is compiled) see the values that will run.
 
 use std::path::Path;
 

@@ -29,7 +29,7 @@ use crate::arm::Fidelity;
 use crate::measured::{Column, Known, Measured, MeasuredError};
 use crate::model::Model;
 pub use crate::run::measurable_channels;
-use crate::run::{RunOptions, RunSummary, Series, run_with};
+use crate::run::{CompiledModel, RunOptions, RunSummary, Series, run_compiled};
 use crate::scene::SceneError;
 pub use crate::sensor::sensor_entity;
 
@@ -129,15 +129,21 @@ pub struct Compared {
     pub columns: Vec<Column>,
 }
 
-/// Checks `measured`'s columns against `model`'s signals (nothing runs if they do not fit),
-/// runs the model and compares.
-pub fn compare(model: &Model, measured: &Measured, options: &CompareOptions) -> Result<Compared, CompareError> {
+/// Checks `measured`'s columns against the compiled model's signals (nothing runs if they do
+/// not fit), runs it and compares.
+pub fn compare(
+    compiled: &CompiledModel,
+    measured: &Measured,
+    options: &CompareOptions,
+) -> Result<Compared, CompareError> {
+    let model: &Model = &compiled.model;
     let defs = measurable_channels(model);
     let known: Vec<Known> = defs.iter().map(Known::from).collect();
     let columns = measured.to_si(&known)?;
     // With the 3D scene, for the recording the measured series are drawn over.
     let run_options = RunOptions { fidelity: options.fidelity, capture_frames: true, ..RunOptions::default() };
-    let (summary, series) = run_with(model, &run_options)?;
+    let (summary, series) = run_compiled(compiled, &run_options);
+    let summary = summary?;
     let simulated: Vec<Vec<f64>> = columns
         .iter()
         .map(|c| series.values(defs.iter().find(|d| d.name == c.name).expect("checked by to_si")))

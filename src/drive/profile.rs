@@ -16,8 +16,13 @@ use super::validate::{DriveError, Move, invalid, require_finite, require_positiv
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Kind {
     Uniform,
-    Trapezoidal,
-    SCurve,
+    /// With the limit it was built to (so that it can be built again over another duration).
+    Trapezoidal {
+        limit: TrapezoidLimit,
+    },
+    SCurve {
+        limit: SCurveLimit,
+    },
     Hold,
     SpinUp {
         final_rate_rad_s: f64,
@@ -100,7 +105,7 @@ impl MotionProfile {
         let pieces = [Piece::new(0.0, mv.sign() * accel, 0.0), Piece::new(t_a, 0.0, 0.0)];
         let segments = chain(DriveState::at_rest(mv.start_rad), &pieces);
         let peaks = Peaks { rate: mv.distance() / (mv.duration_s - t_a), accel, jerk: f64::INFINITY };
-        Self::assemble(Kind::Trapezoidal, &mv, peaks, segments)
+        Self::assemble(Kind::Trapezoidal { limit }, &mv, peaks, segments)
     }
 
     /// Jerk-limited symmetric 7-segment S-curve from `start_rad` (rad) to
@@ -125,7 +130,7 @@ impl MotionProfile {
         ];
         let segments = chain(DriveState::at_rest(mv.start_rad), &pieces);
         let peaks = Peaks { rate: mv.distance() / (mv.duration_s - t_a), accel, jerk };
-        Self::assemble(Kind::SCurve, &mv, peaks, segments)
+        Self::assemble(Kind::SCurve { limit }, &mv, peaks, segments)
     }
 
     /// Hold at `angle_rad` (rad) forever, at rest.
@@ -258,8 +263,8 @@ impl MotionProfile {
         match &self.kind {
             Kind::Shaped(shaping) => shaping.base.law(),
             Kind::Uniform => MotionLaw::Uniform,
-            Kind::Trapezoidal => MotionLaw::Trapezoidal,
-            Kind::SCurve => MotionLaw::SCurve,
+            Kind::Trapezoidal { .. } => MotionLaw::Trapezoidal,
+            Kind::SCurve { .. } => MotionLaw::SCurve,
             Kind::Hold => MotionLaw::Hold,
             Kind::SpinUp { .. } => MotionLaw::SpinUp,
             Kind::Table { .. } => MotionLaw::Table,
@@ -274,7 +279,7 @@ impl MotionProfile {
     /// Builds a symmetric profile and checks that its first half really
     /// reaches the midpoint angle (guards against degenerate extreme inputs).
     fn assemble(kind: Kind, mv: &Move, peaks: Peaks, segments: Vec<Segment>) -> Result<Self, DriveError> {
-        let jerk_ok = peaks.jerk.is_finite() || kind == Kind::Trapezoidal;
+        let jerk_ok = peaks.jerk.is_finite() || matches!(kind, Kind::Trapezoidal { .. });
         if !(peaks.rate.is_finite() && peaks.accel.is_finite() && jerk_ok) {
             return Err(invalid(
                 "duration_s",

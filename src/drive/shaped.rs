@@ -44,7 +44,7 @@ impl MotionProfile {
     /// (`base`), no mode (`modes`), a frequency that is not finite and > 0 (`frequency_hz`), or a
     /// damping ratio outside `0 ≤ ζ < 1` (`damping_ratio`).
     pub fn shaped_for(base: MotionProfile, shaper: Shaper, modes: &[ShaperMode]) -> Result<Self, DriveError> {
-        if !matches!(base.kind, Kind::Uniform | Kind::Trapezoidal | Kind::SCurve) {
+        if !matches!(base.kind, Kind::Uniform | Kind::Trapezoidal { .. } | Kind::SCurve { .. }) {
             return Err(invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move"));
         }
         if modes.is_empty() {
@@ -72,6 +72,47 @@ impl MotionProfile {
             segments,
             kind: Kind::Shaped(Box::new(Shaping { base, shaper, modes: modes.to_vec(), impulses })),
         })
+    }
+
+    /// This move (uniform, trapezoidal or s-curve, unshaped) convolved with `shaper` tuned to
+    /// every one of `modes`, its base move shortened by the shaper's length so that the whole
+    /// move still takes this one's duration.
+    ///
+    /// # Errors
+    /// As [`Self::shaped_for`]; `duration_s` not longer than the shaper's length; the move's
+    /// limits not reachable over the shortened duration.
+    pub fn shaped_within(&self, shaper: Shaper, modes: &[ShaperMode]) -> Result<Self, DriveError> {
+        let valid = |m: &ShaperMode| {
+            m.frequency_hz.is_finite() && m.frequency_hz > 0.0 && (0.0..1.0).contains(&m.damping_ratio)
+        };
+        if modes.is_empty() || !modes.iter().all(valid) {
+            return Self::shaped_for(self.clone(), shaper, modes);
+        }
+        let length_s = shaper.length_for_s(modes);
+        if self.duration_s <= length_s {
+            let listed: Vec<String> = modes.iter().map(|m| format!("{:.4}", m.frequency_hz)).collect();
+            return Err(DriveError::InvalidParameter {
+                name: "duration_s",
+                value: self.duration_s,
+                allowed: format!(
+                    "> the {} shaper's length {length_s:.3} s at [{}] Hz (the base move lasts duration_s minus it)",
+                    shaper.name(),
+                    listed.join(", ")
+                ),
+            });
+        }
+        Self::shaped_for(self.over(self.duration_s - length_s)?, shaper, modes)
+    }
+
+    /// The same move (uniform, trapezoidal or s-curve: its angles and limit) over `duration_s`.
+    fn over(&self, duration_s: f64) -> Result<Self, DriveError> {
+        let (start, end) = (self.start_rad, self.end_rad);
+        match &self.kind {
+            Kind::Uniform => Self::uniform(start, end, duration_s),
+            Kind::Trapezoidal { limit } => Self::trapezoidal(start, end, duration_s, *limit),
+            Kind::SCurve { limit } => Self::s_curve(start, end, duration_s, *limit),
+            _ => Err(invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move")),
+        }
     }
 
     /// The shaper of a shaped profile, `None` for every other.

@@ -230,7 +230,8 @@ pub fn nominal_shaper_tuning(path: &Path, document: &toml::Value) -> Result<Vec<
         return Ok(Vec::new());
     }
     let scenario = Scenario::from_spec(path, spec_of(path, document.clone())?)?;
-    let modes = scenario.model.drive.motion.shaper_modes();
+    let tuned = scenario.tuned()?;
+    let modes = tuned.drive.motion.shaper_modes();
     let list = |pick: fn(&crate::drive::ShaperMode) -> f64| {
         toml::Value::Array(modes.iter().map(|m| toml::Value::Float(pick(m))).collect())
     };

@@ -26,7 +26,7 @@ use crate::arm::Fidelity;
 use crate::channel::Channel;
 use crate::compile::Compiler;
 use crate::robot::Robot;
-use crate::run::{RunOptions, RunSummary, Series, run_reusing};
+use crate::run::{RunOptions, RunSummary, Series, run_compiled};
 use crate::scenario::{Scenario, ScenarioError, ScenarioSpec};
 use crate::scene::SceneError;
 use crate::sweep::plan::{explicit_damping_ratios, get_number, not_a_number, set_key};
@@ -209,20 +209,21 @@ impl Problem {
         let mut spec: ScenarioSpec = self.document_at(values)?.try_into().map_err(|e: toml::de::Error| {
             Box::new(ScenarioError::Parse { path: self.path.clone(), message: e.to_string() })
         })?;
-        // Before the scenario's checks, as `run`'s overrides: an actuator's loop and the step it
-        // allows are checked at the model and step that run.
+        // Before the scenario's checks and compile, as `run`'s overrides: an actuator's loop and
+        // the step it allows are checked at the model and step that run.
         if let Some(step_s) = self.settings.step_s {
             spec.time.step_s = step_s;
         }
         if let Some(fidelity) = self.settings.fidelity {
             spec.model = fidelity.into();
         }
-        let model = Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &self.compiler)
-            .map_err(Box::new)?
-            .model;
+        let scenario = Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &self.compiler)
+            .map_err(Box::new)?;
+        let compiled = scenario.compile(self.settings.fidelity).map_err(Box::new)?;
         let options = RunOptions { fidelity: self.settings.fidelity, ..RunOptions::default() };
-        run_reusing(&model, &options, &self.compiler)
-            .map_err(|source| FitError::Run { values: show(&self.parameters, values), source })
+        let (summary, series) = run_compiled(&compiled, &options);
+        let summary = summary.map_err(|source| FitError::Run { values: show(&self.parameters, values), source })?;
+        Ok((summary, series))
     }
 }
 

@@ -4,16 +4,20 @@
 //! channels and its contact pairs' names. A run ([`super::run_compiled`]) steps a fresh scene
 //! from it and fills a fresh series, as MuJoCo's `mjData` steps beside its `mjModel`.
 
+use std::borrow::Cow;
+
 use crate::arm::{ArmError, Fidelity};
 use crate::channel::Channel;
 use crate::compile::Compiler;
 use crate::model::Model;
+use crate::scene::SceneError;
 use crate::select::CompiledArm;
 
 /// A model compiled for its runs (module doc).
 pub struct CompiledModel<'a> {
-    /// The model, as the scenario file gives it, checked.
-    pub model: &'a Model,
+    /// The model, as the scenario file gives it, checked, its drive's shaper tuned
+    /// ([`crate::tuning::tuned`]).
+    pub model: Cow<'a, Model>,
     /// Its arm at the chosen fidelity, with the choices and the fastest motion.
     pub arm: CompiledArm,
     /// The run's channels as their producers declare them, but the sign-off's (those follow
@@ -31,12 +35,17 @@ pub struct CompiledModel<'a> {
 impl<'a> CompiledModel<'a> {
     /// Compiles `model` at `fidelity` (`auto`'s choice if `None`), taking from `compiler` what it
     /// kept from earlier compilations that it shares (the beam, its modes, the reduced arm).
-    pub fn new(model: &'a Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<Self, ArmError> {
-        let arm = crate::select::compile_arm(model, fidelity, compiler)?;
-        let string_frequencies_hz = string_frequencies_hz(model, &arm)?;
-        let pair_names = crate::scene::pair_names(model);
-        let mut compiled = CompiledModel { model, arm, channels: Vec::new(), pair_names, string_frequencies_hz };
-        compiled.channels = super::channels(model, compiled.modal_dofs());
+    ///
+    /// # Errors
+    /// The shaper cannot be tuned ([`crate::tuning::TuningError`]) or the arm not compiled.
+    pub fn new(model: &'a Model, fidelity: Option<Fidelity>, compiler: &Compiler) -> Result<Self, SceneError> {
+        let model = crate::tuning::tuned(model, compiler)?;
+        let arm = crate::select::compile_arm(&model, fidelity, compiler)?;
+        let string_frequencies_hz = string_frequencies_hz(&model, &arm)?;
+        let pair_names = crate::scene::pair_names(&model);
+        let channels = Vec::new();
+        let mut compiled = CompiledModel { model, arm, channels, pair_names, string_frequencies_hz };
+        compiled.channels = super::channels(&compiled.model, compiled.modal_dofs());
         Ok(compiled)
     }
 

@@ -17,24 +17,15 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{Check, ScenarioError, loop_advice};
+use super::{Check, ScenarioError};
 use crate::actuator::{Actuator, ControllerGains, Cylinder, HydraulicCircuit, HydraulicDrive, ServoDrive, Valve};
-use nalgebra::Complex;
 
-use crate::arm::{ArmError, ArmModel, ArmSimulation, HubDrive};
 use crate::drive::MotionLaw;
-use crate::integrate::IntegratorKind;
 use crate::model::Model;
 use crate::robot::Robot;
 
 /// Angles sampled along the drive's path when the cylinder's length is checked on it.
 const PATH_SAMPLES: usize = 2000;
-
-/// Fraction of an explicit integrator's longest stable step a scene's step may use.
-const STEP_MARGIN: f64 = 0.95;
-
-/// Points along the drive's path, besides the start, where the closed loop is linearised at rest.
-const LOOP_CHECK_POINTS: usize = 4;
 
 /// The actuator as a scenario states it; the table left out: ideal.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
@@ -183,7 +174,8 @@ impl Check<'_> {
 
     /// The actuator against the rest of the scene: its controller no faster than the scene's
     /// step, fixed steps, the cylinder within its stroke and the motor within its speed on the
-    /// drive's path, and the arm held at the start.
+    /// drive's path (the closed loop, which needs the compiled arm, is checked when the scenario
+    /// is compiled: [`super::compile`]).
     pub(super) fn actuator_in_scene(&self, model: &Model) -> Result<(), ScenarioError> {
         let actuator = &model.drive.actuator;
         let Some(gains) = actuator.controller() else { return Ok(()) };
@@ -221,96 +213,7 @@ impl Check<'_> {
                 }
             }
         }
-        self.closed_loop_on_path(model)
-    }
-
-    /// The arm the run takes (compiled as the run compiles it, and kept for it), held by its drive
-    /// at the start ([`Self::holding`]) and at rest at points along the drive's path, linearised
-    /// there (the controller sampling continuously): every pole must decay, and an explicit
-    /// integrator's step must keep each inside its stability region.
-    fn closed_loop_on_path(&self, model: &Model) -> Result<(), ScenarioError> {
-        // The model the run compiles (through the shared compiler, which keeps it for the run).
-        let compiled = crate::run::CompiledModel::new(model, None, self.compiler)
-            .map_err(|e| self.invalid("payload", e.to_string()))?;
-        let arm = compiled.arm.model.clone();
-        let start = self.holding(model, ArmSimulation::new(arm.clone(), model.hub_drive(), model.integrator))?;
-        let mut poles = self.decaying_poles(model, &arm, &start, &|m: &Model| m.hub_drive(), "at the start")?;
-        let (lo, hi) = model.drive.motion.angle_range_rad(model.duration_s());
-        for k in 1..=LOOP_CHECK_POINTS {
-            let angle = lo + (hi - lo) * k as f64 / LOOP_CHECK_POINTS as f64;
-            let held = model.hub_drive_held_at(angle);
-            let at = format!("at rest at {:.1} deg on the drive's path", angle.to_degrees());
-            let sim = self.holding(model, ArmSimulation::new(arm.clone(), held, model.integrator))?;
-            poles.extend(self.decaying_poles(model, &arm, &sim, &|m: &Model| m.hub_drive_held_at(angle), &at)?);
-        }
-        self.explicit_step_resolves(model, &poles)
-    }
-
-    /// The poles of `sim` (the arm `arm` held by `drive_of` the model) linearised, or an error
-    /// naming the growing one, `at` where, with the settings that move it and which way
-    /// ([`loop_advice`]).
-    fn decaying_poles(
-        &self,
-        model: &Model,
-        arm: &ArmModel,
-        sim: &ArmSimulation,
-        drive_of: &dyn Fn(&Model) -> HubDrive,
-        at: &str,
-    ) -> Result<Vec<Complex<f64>>, ScenarioError> {
-        let poles = sim
-            .linear_poles()
-            .map_err(|e| self.invalid("actuator.kind", format!("linearising the arm {at} fails: {e}")))?;
-        let growing = poles.iter().copied().filter(|p| loop_advice::grows(*p)).max_by(|a, b| a.re.total_cmp(&b.re));
-        let Some(p) = growing else { return Ok(poles) };
-        let (key, advice) = loop_advice::advice(model, arm, drive_of, p);
-        Err(self.invalid(
-            key,
-            format!(
-                "the closed loop linearised {at} has a growing mode: pole {:.3} ± {:.3}i rad/s ({:.2} Hz, doubling \
-                 every {:.2} s); {advice}",
-                p.re,
-                p.im.abs(),
-                p.im.abs() / std::f64::consts::TAU,
-                std::f64::consts::LN_2 / p.re
-            ),
-        ))
-    }
-
-    /// An explicit integrator's step keeps every pole inside its stability region, with a
-    /// margin: at most [`STEP_MARGIN`] of the longest step that does.
-    fn explicit_step_resolves(&self, model: &Model, poles: &[Complex<f64>]) -> Result<(), ScenarioError> {
-        let (integrator, step) = (&model.integrator, model.time.step_s);
-        if integrator.stability_limit_omega_dt().is_none() {
-            return Ok(());
-        }
-        // The longest stable step, by bisection (stability regions are intervals in h along a ray).
-        let (mut stable_h, mut unstable_h) = (0.0, 100.0 * step);
-        for _ in 0..80 {
-            let h = 0.5 * (stable_h + unstable_h);
-            if poles.iter().all(|p| stable(integrator, *p, h)) { stable_h = h } else { unstable_h = h }
-        }
-        if step <= STEP_MARGIN * stable_h {
-            return Ok(());
-        }
-        let fastest = poles.iter().map(|p| p.norm()).fold(0.0, f64::max);
-        let implicit = "or integrator.kind = \"generalized-alpha\" (stable at any step)";
-        let remedy = if stable_h > 0.0 {
-            format!(
-                "allowed step_s <= {:.3e} s ({STEP_MARGIN} of the longest stable step), {implicit}",
-                STEP_MARGIN * stable_h
-            )
-        } else {
-            format!("no step is stable for it: use {implicit}")
-        };
-        Err(self.invalid(
-            "time.step_s",
-            format!(
-                "{} is explicit and the arm with its actuator has poles its step {step} s does not keep in its stability \
-                 region with a margin (fastest {fastest:.1} rad/s, |λ|·dt = {:.3}): {remedy}",
-                integrator.name(),
-                fastest * step
-            ),
-        ))
+        Ok(())
     }
 
     /// The motor's speed at the reference's peak rate within its limit.
@@ -395,58 +298,6 @@ impl Check<'_> {
             return Ok(());
         };
         Err(self.invalid("actuator.kind", problem))
-    }
-
-    /// The actuator holds the arm at rest at the drive's start (the arm waits on it before the
-    /// lift): a hydraulic drive within tank..supply pressure, a servo within its torque. `started`
-    /// is the simulation built at the start.
-    fn holding(&self, model: &Model, started: Result<ArmSimulation, ArmError>) -> Result<ArmSimulation, ScenarioError> {
-        let why = match started {
-            Ok(sim) => return Ok(sim),
-            Err(ArmError::ActuatorCannotHold { why, .. }) => why,
-            Err(e) => return Err(self.invalid("actuator.kind", format!("the actuated start fails: {e}"))),
-        };
-        let source = model.robot.source.display();
-        let (key, remedy) = match &model.drive.actuator {
-            Actuator::Hydraulic(_) => (
-                "actuator.supply_pressure_pa",
-                format!(
-                    "a supply pressure that holds it with both chambers between tank and supply (or a larger bore or \
-                     lever: joint[{}].pipearm:cylinder in {source})",
-                    model.robot.lift.name
-                ),
-            ),
-            _ => (
-                "actuator.kind",
-                format!(
-                    "a servo whose gear_ratio x torque_limit_n_m holds it (joint[{}].pipearm:servo in {source})",
-                    model.robot.lift.name
-                ),
-            ),
-        };
-        Err(self.invalid(key, format!("{why}: allowed {remedy}")))
-    }
-}
-
-/// Whether `integrator` at step `h` keeps the mode of pole `pole` from growing: the amplification
-/// of the test equation y' = λy for the Runge–Kutta methods, of the damped oscillator with
-/// ω = |λ| and ζ = −Re λ / |λ| for symplectic Euler, the undamped limit for Newmark's explicit
-/// range; the implicit methods at any step.
-fn stable(integrator: &IntegratorKind, pole: Complex<f64>, h: f64) -> bool {
-    let z = pole * h;
-    let one = Complex::new(1.0, 0.0);
-    match integrator {
-        IntegratorKind::Rk4 => (one + z + z * z / 2.0 + z * z * z / 6.0 + z * z * z * z / 24.0).norm() <= 1.0 + 1e-12,
-        IntegratorKind::ExplicitEuler => (one + z).norm() <= 1.0 + 1e-12,
-        IntegratorKind::SymplecticEuler if pole.im == 0.0 => (one + z).norm() <= 1.0 + 1e-12,
-        IntegratorKind::SymplecticEuler => {
-            let (w, zeta) = (pole.norm(), -pole.re / pole.norm());
-            let (a, b, c, d) =
-                (1.0 - w * w * h * h, h * (1.0 - 2.0 * zeta * w * h), -w * w * h, 1.0 - 2.0 * zeta * w * h);
-            let eigen = nalgebra::Matrix2::new(a, b, c, d).complex_eigenvalues();
-            eigen.iter().all(|e| e.norm() <= 1.0 + 1e-12)
-        }
-        other => other.stability_limit_omega_dt().is_none_or(|limit| pole.norm() * h <= limit),
     }
 }
 

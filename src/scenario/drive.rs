@@ -8,8 +8,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Check, Scenario, ScenarioError};
 use crate::drive::{DriveError, MotionLaw, MotionProfile, SCurveLimit, Shaper, ShaperMode, TableError, TrapezoidLimit};
-use crate::model::{Model, TunedMode};
-use crate::tuning;
+use crate::model::Model;
 
 /// A number for every mode, or one per mode: `shaper_hz = 5.1`, `shaper_hz = [2.85, 5.1]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -78,7 +77,7 @@ pub enum DriveSpec {
         #[serde(default, skip_serializing_if = "Option::is_none")]
         shaper: Option<Shaper>,
         /// The natural frequencies the shaper cancels, Hz: one or a list (default: the modes the
-        /// move leaves ringing, [`tuning::shaper_modes`]).
+        /// move leaves ringing, found when the scenario is compiled: [`crate::tuning::tuned`]).
         #[serde(default, skip_serializing_if = "Option::is_none", deserialize_with = "shaper_hz")]
         shaper_hz: Option<PerMode>,
         /// Their damping ratios: one for all, or one per `shaper_hz` (default: the arm's first
@@ -162,39 +161,22 @@ impl Check<'_> {
         }
     }
 
-    /// The shaped drive and, where the modes were found rather than given, how each was picked:
-    /// tuned to `shaper_hz` if given (damped by `shaper_damping_ratio`, else by the arm's first
-    /// modal damping ratio), else to the modes the unshaped move leaves ringing
-    /// ([`tuning::shaper_modes`], on `model` built with the unshaped move); the base move shortened
-    /// by the shaper's length so that the lift keeps its `duration_s`.
+    /// The drive's motion with the shaper `request` asks for: shaped to the modes `shaper_hz`
+    /// gives, or, where it gives none, unshaped with the shaper to tune when the model is
+    /// compiled (the arm's modes: [`crate::tuning::tuned`]).
     pub(super) fn shaped(
         &self,
         drive: &DriveSpec,
         request: ShaperRequest<'_>,
         model: &Model,
-    ) -> Result<(MotionProfile, Vec<TunedMode>), ScenarioError> {
-        let (modes, tuned) = match request.frequencies_hz {
-            Some(frequencies) => (self.given_modes(frequencies, request.damping_ratios, model)?, Vec::new()),
-            None => {
-                let found = tuning::shaper_modes(model, self.compiler).map_err(|e| {
-                    self.invalid(
-                        "drive.shaper",
-                        format!("the arm's modes at the end of the path cannot be computed ({e}): set drive.shaper_hz"),
-                    )
-                })?;
-                if found.is_empty() {
-                    return Err(self.invalid(
-                        "drive.shaper",
-                        "the arm with its drive has no oscillating mode at the end of the path: set drive.shaper_hz",
-                    ));
-                }
-                let modes =
-                    found.iter().map(|m| ShaperMode { frequency_hz: m.frequency_hz, damping_ratio: m.damping_ratio });
-                (modes.collect(), found)
+    ) -> Result<(MotionProfile, Option<Shaper>), ScenarioError> {
+        match request.frequencies_hz {
+            Some(frequencies) => {
+                let modes = self.given_modes(frequencies, request.damping_ratios, model)?;
+                Ok((drive.shaped_motion(&modes).map_err(|e| drive_error(self.path, e))?, None))
             }
-        };
-        let motion = drive.shaped_motion(&modes).map_err(|e| drive_error(self.path, e))?;
-        Ok((motion, tuned))
+            None => Ok((model.drive.motion.clone(), Some(request.shaper))),
+        }
     }
 
     /// The modes `shaper_hz` and `shaper_damping_ratio` give.
@@ -305,8 +287,9 @@ impl DriveSpec {
         }
     }
 
-    /// The motion profile of a built-in law, in radians, unshaped: a drive's `shaper`, which needs
-    /// the arm's modes, is applied by [`Self::shaped_motion`] (as [`Scenario::load`] does). A
+    /// The motion profile of a built-in law, in radians, unshaped: a drive's `shaper` is applied
+    /// by [`Self::shaped_motion`] where its modes are given, and when the scenario is compiled
+    /// where they are found from the arm's ([`crate::tuning::tuned`]). A
     /// table is read relative to its scenario file ([`Scenario::load`],
     /// [`MotionProfile::from_csv`]); here it is an error.
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
@@ -321,37 +304,9 @@ impl DriveSpec {
     /// As [`Self::motion`]; `duration_s` not longer than the shaper's length; modes
     /// [`MotionProfile::shaped_for`] refuses.
     pub fn shaped_motion(&self, modes: &[ShaperMode]) -> Result<MotionProfile, DriveError> {
-        let (Some(request), Some(duration_s)) = (self.shaping(), self.duration_s()) else { return self.motion() };
-        let shaper = request.shaper;
-        let valid = |m: &ShaperMode| {
-            m.frequency_hz.is_finite() && m.frequency_hz > 0.0 && (0.0..1.0).contains(&m.damping_ratio)
-        };
-        if modes.is_empty() || !modes.iter().all(valid) {
-            return MotionProfile::shaped_for(self.motion()?, shaper, modes);
-        }
-        let length_s = shaper.length_for_s(modes);
-        if duration_s <= length_s {
-            let listed: Vec<String> = modes.iter().map(|m| format!("{:.4}", m.frequency_hz)).collect();
-            return Err(DriveError::InvalidParameter {
-                name: "duration_s",
-                value: duration_s,
-                allowed: format!(
-                    "> the {} shaper's length {length_s:.3} s at [{}] Hz (the base move lasts duration_s minus it)",
-                    shaper.name(),
-                    listed.join(", ")
-                ),
-            });
-        }
-        MotionProfile::shaped_for(self.profile(Some(duration_s - length_s))?, shaper, modes)
-    }
-
-    /// The lift time of a point-to-point drive, s.
-    fn duration_s(&self) -> Option<f64> {
-        match *self {
-            DriveSpec::Uniform { duration_s, .. }
-            | DriveSpec::Trapezoidal { duration_s, .. }
-            | DriveSpec::SCurve { duration_s, .. } => Some(duration_s),
-            DriveSpec::Hold { .. } | DriveSpec::Table { .. } => None,
+        match self.shaping() {
+            Some(request) => self.motion()?.shaped_within(request.shaper, modes),
+            None => self.motion(),
         }
     }
 

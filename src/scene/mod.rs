@@ -74,6 +74,9 @@ pub enum SceneError {
     /// In the arm.
     #[error(transparent)]
     Arm(#[from] ArmError),
+    /// The drive's shaper cannot be tuned to the arm's modes.
+    #[error("key `{key}`: {0}", key = .0.key())]
+    Tuning(#[from] crate::tuning::TuningError),
     /// A pad the contact method cannot model.
     #[error(transparent)]
     UnsupportedPad(#[from] UnsupportedPad),

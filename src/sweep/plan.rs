@@ -88,8 +88,8 @@ impl Plan {
             }
             specs.push((case, spec, robot_path));
         }
-        // One compiler for every case: what a case's checks compile, its run and the other
-        // cases take where their keys leave it as it was.
+        // One compiler for every case: what a case's compile derives, the other cases take
+        // where their keys leave it as it was.
         let compiler = std::sync::Arc::new(crate::compile::Compiler::new());
         let checked: Vec<Result<(Case, Scenario), SweepError>> = specs
             .into_par_iter()
