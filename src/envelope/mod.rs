@@ -141,7 +141,7 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     let vary = sampling.vary(&request.spreads);
     let rows = sampling.case_rows(&request.spreads, &pinned_keys(&request.scenario, &request.spreads)?);
     let (plan, scenarios) = pool.install(|| Plan::build_cases(&request.scenario, vary, rows))?;
-    let compiled = compile_cases(&plan, &scenarios, &pool)?;
+    let compiled = compile_cases(&plan, &scenarios, request.shard, &pool)?;
     let work = prepare(&plan, &request.out, request.shard)?;
     let json = serde_json::to_string_pretty(&sampling).expect("a sampling serialises") + "\n";
     crate::sweep::write_atomic(

@@ -89,38 +89,36 @@ fn remove_stale(plan: &Plan, cases: &Path, shard: Shard) -> Result<(), SweepErro
     Ok(())
 }
 
-/// Compiles every case of `plan` (their `scenarios` by index) on the workers of `pool`, each
-/// through the compiler the cases share ([`Scenario::compile`]): a case the compile refuses
-/// fails the sweep before any case is written.
+/// Compiles `shard`'s cases of `plan` (their `scenarios` by index; `None` for the other shards')
+/// on the workers of `pool`, each through the compiler the cases share
+/// ([`Scenario::compile`]): a case the compile refuses fails the sweep before any case is
+/// written.
 pub fn compile_cases<'a>(
     plan: &Plan,
     scenarios: &'a [Scenario],
+    shard: Shard,
     pool: &rayon::ThreadPool,
-) -> Result<Vec<CompiledModel<'a>>, SweepError> {
+) -> Result<Vec<Option<CompiledModel<'a>>>, SweepError> {
     use rayon::prelude::*;
     let keys = plan.keys();
-    pool.install(|| {
-        scenarios
-            .par_iter()
-            .zip(&plan.cases)
-            .map(|(scenario, case)| {
-                scenario.compile(None).map_err(|error| SweepError::Case {
-                    index: case.index,
-                    values: case.describe(&keys),
-                    error: Box::new(error),
-                })
-            })
-            .collect()
-    })
+    let compile = |(scenario, case): (&'a Scenario, &Case)| {
+        if !shard.contains(case.index) {
+            return Ok(None);
+        }
+        let error =
+            |error| SweepError::Case { index: case.index, values: case.describe(&keys), error: Box::new(error) };
+        scenario.compile(None).map(Some).map_err(error)
+    };
+    pool.install(|| scenarios.par_iter().zip(&plan.cases).map(compile).collect())
 }
 
-/// Runs the cases `todo` of `plan` (their `compiled` models by index) on the workers of `pool`,
+/// Runs the cases `todo` of `plan` (their `compiled` models by index, every one compiled) on the workers of `pool`,
 /// writing each case file as it finishes and calling `done` after it. The
 /// longest cases go first and each worker takes the next as it frees up, so the workers finish
 /// together to within one of the shortest cases. Stops at the first failure and returns it.
 pub fn run_cases(
     plan: &Plan,
-    compiled: &[CompiledModel],
+    compiled: &[Option<CompiledModel>],
     dir: &Path,
     todo: &[usize],
     pool: &rayon::ThreadPool,
@@ -131,7 +129,8 @@ pub fn run_cases(
     let failure: Mutex<Option<SweepError>> = Mutex::new(None);
     pool.broadcast(|_| {
         while let Some(&i) = queue.get(next.fetch_add(1, Ordering::Relaxed)) {
-            match run_case(plan, &plan.cases[i], &compiled[i], dir) {
+            let compiled = compiled[i].as_ref().expect("a shard's cases are compiled");
+            match run_case(plan, &plan.cases[i], compiled, dir) {
                 Ok(()) => done(&plan.cases[i]),
                 Err(e) => {
                     failure.lock().expect("no worker panics holding it").get_or_insert(e);
@@ -144,8 +143,8 @@ pub fn run_cases(
 }
 
 /// `todo` ordered by the steps each case takes (its cost), most first; ties by index.
-fn longest_first(todo: &[usize], compiled: &[CompiledModel]) -> Vec<usize> {
-    let steps = |i: usize| compiled[i].model.duration_s() / compiled[i].model.time.step_s;
+fn longest_first(todo: &[usize], compiled: &[Option<CompiledModel>]) -> Vec<usize> {
+    let steps = |i: usize| compiled[i].as_ref().map_or(0.0, |c| c.model.duration_s() / c.model.time.step_s);
     let mut queue = todo.to_vec();
     queue.sort_by(|&a, &b| steps(b).total_cmp(&steps(a)).then(a.cmp(&b)));
     queue

@@ -112,14 +112,14 @@ pub enum Progress {
     Done { index: usize },
 }
 
-/// Plans, checks and compiles every case (writing nothing if one fails), runs this shard's cases
-/// that are not current, and merges if the shard is the whole sweep.
+/// Plans and checks every case and compiles this shard's (writing nothing if one fails), runs
+/// this shard's cases that are not current, and merges if the shard is the whole sweep.
 pub fn sweep(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, SweepError> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build()?;
     let vary =
         request.vary.iter().map(|v| pipes::expand(&request.scenario, v.clone())).collect::<Result<Vec<_>, _>>()?;
     let (plan, scenarios) = pool.install(|| Plan::build(&request.scenario, vary))?;
-    let compiled = compile_cases(&plan, &scenarios, &pool)?;
+    let compiled = compile_cases(&plan, &scenarios, request.shard, &pool)?;
     let work = prepare(&plan, &request.out, request.shard)?;
     progress(Progress::Start { todo: work.todo.len() });
     run_cases(&plan, &compiled, &request.out, &work.todo, &pool, &|case| {
