@@ -5,7 +5,7 @@ use std::time::Instant;
 use serde::Serialize;
 
 use crate::actuator::{ActuatorOutputs, ActuatorSummary};
-use crate::analysis::{Residual, StiffnessClass, residual_of_run};
+use crate::analysis::Residual;
 use crate::arm::{ArmError, ArmSample, Fidelity};
 use crate::compile::Compiler;
 use crate::contact::{Impact, ImpactTracker};
@@ -20,11 +20,13 @@ use crate::stress::StressProbe;
 mod channels;
 mod compiled;
 mod readings;
+mod summarize;
 
 pub use channels::{channels, measurable_channels};
 pub use compiled::CompiledModel;
 pub use readings::HeadSummary;
 use readings::{read_head, read_sensors, read_string};
+use summarize::{AsBuilt, RunCounts, summarize};
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -365,9 +367,9 @@ pub fn run_compiled(compiled: &CompiledModel, options: &RunOptions) -> (Result<R
 /// The step loop: builds the scene, steps it to the model's end, fills `series` as it goes.
 fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series) -> Result<RunSummary, SceneError> {
     let model: &Model = &compiled.model;
-    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, fastest_rad_s } = &compiled.arm;
-    let fastest_rad_s = *fastest_rad_s;
+    let crate::select::CompiledArm { string: string_choice, arm: choice, model: arm, .. } = &compiled.arm;
     let mut scene = Scene::with_arm(model, arm.clone())?;
+    let built = AsBuilt::of(&scene);
     let h = model.time.step_s;
     let control = free_step_control(model);
     let end = model.duration_s();
@@ -438,7 +440,8 @@ fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series)
     stress.iter_mut().for_each(|p| p.hand_over_rest(&mut series.stress));
     let summarized = stepped.and_then(|steps| {
         let wall_time_s = started.elapsed().as_secs_f64();
-        let mut summary = summarize(model, &scene, series, &trackers, fastest_rad_s, steps, wall_time_s)?;
+        let run = RunCounts { steps, wall_time_s };
+        let mut summary = summarize(compiled, &built, series, &trackers, run)?;
         (summary.model_reason, summary.model_expected_error) = (choice.reason.clone(), choice.expected.clone());
         if let Some(choice) = string_choice {
             if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {
@@ -593,100 +596,4 @@ fn record(scene: &Scene, s: &ArmSample, series: &mut Series, trackers: &mut [Imp
         forces.push(pad.force_n);
         tracker.push(s.t_s, pad.force_n);
     }
-}
-
-fn summarize(
-    model: &Model,
-    scene: &Scene,
-    series: &Series,
-    trackers: &[ImpactTracker],
-    fastest_rad_s: f64,
-    steps: usize,
-    wall_time_s: f64,
-) -> Result<RunSummary, SceneError> {
-    let arm = &scene.arm.arm;
-    let g = model.physics.gravity_m_s2;
-    let w_static = arm.beam.gravity_tip_deflection_m(crate::arm::STANDARD_GRAVITY_M_S2)?;
-    let length = arm.length_m();
-    let payload_kg = model.payload.mass_kg();
-    let deflection: Vec<(f64, f64)> =
-        series.t_s.iter().zip(&series.tip_deflection_m).map(|(t, d)| (*t, d[1])).collect();
-    let max_tip_deflection_m = deflection.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
-    // Under an actuator the hub rings on its drive: the residual's frequency and decay are its.
-    let hub_rate: Option<Vec<(f64, f64)>> = (model.drive.actuator != crate::actuator::Actuator::Ideal)
-        .then(|| series.t_s.iter().copied().zip(series.hub_rate_rad_s.iter().copied()).collect());
-    let (torque_i, peak_torque) = series
-        .drive_torque_n_m
-        .iter()
-        .enumerate()
-        .fold((0, 0.0_f64), |best, (i, t)| if t.abs() > best.1 { (i, t.abs()) } else { best });
-    let pairs = scene
-        .pairs()
-        .zip(trackers)
-        .map(|(pad, tracker)| {
-            let impacts = tracker.impacts();
-            let peak = impacts.iter().copied().max_by(|a, b| a.peak_force_n.total_cmp(&b.peak_force_n));
-            let peak_force_n = peak.map_or(0.0, |p| p.peak_force_n);
-            PairSummary {
-                pair: pad.name.clone(),
-                peak_force_n,
-                peak_time_s: peak.map_or(f64::NAN, |p| p.peak_time_s),
-                peak_force_per_payload_weight: if payload_kg > 0.0 {
-                    peak_force_n / (payload_kg * g)
-                } else {
-                    f64::NAN
-                },
-                impulse_n_s: impacts.iter().map(|i| i.impulse_n_s).sum(),
-                impact_count: impacts.len(),
-                impacts,
-            }
-        })
-        .collect();
-    let w_over_l = w_static / length;
-    Ok(RunSummary {
-        scenario: model.name.clone(),
-        robot: model.robot.name.clone(),
-        payload_kg,
-        model: arm.fidelity.to_string(),
-        model_reason: String::new(),
-        model_expected_error: None,
-        integrator: model.integrator.to_string(),
-        contact_method: model.contact.method.name().into(),
-        contact_detection: (model.contact.method == crate::model::ContactMethod::Compliant)
-            .then(|| scene.detection().name().into()),
-        step_s: model.time.step_s,
-        free_step_s: model.time.free_step_s.unwrap_or(model.time.step_s),
-        steps,
-        simulated_s: series.t_s.last().copied().unwrap_or(0.0),
-        wall_time_s,
-        static_w_over_l: w_over_l,
-        stiffness_class: StiffnessClass::of_ratio(w_over_l).describe().to_string(),
-        motion_advice: crate::select::motion_advice(model, StiffnessClass::of_ratio(w_over_l)),
-        max_tip_deflection_m,
-        max_w_over_l: max_tip_deflection_m / length,
-        peak_drive_torque_n_m: peak_torque,
-        peak_drive_torque_time_s: series.t_s.get(torque_i).copied().unwrap_or(0.0),
-        drive: DriveLimits::of(model, peak_torque),
-        actuator: ActuatorSummary::of(
-            model.drive.actuator.kind(),
-            &model.drive.motion,
-            &series.hub_angle_rad,
-            &series.drive_torque_n_m,
-            &series.actuator,
-        ),
-        residual: residual_of_run(&deflection, hub_rate.as_deref(), model.drive_end_s()),
-        pairs,
-        highest_omega_dt: fastest_rad_s * model.time.step_s,
-        stability_limit_omega_dt: model.integrator.stability_limit_omega_dt(),
-        sensors: series.sensors.iter().map(|s| SensorSummary::of(s, &series.t_s)).collect(),
-        string_slip: scene.grip().map(|g| SlipSummary {
-            squeeze_n: g.squeeze_n,
-            max_slip_m: series.string_slip_m.iter().map(|s| s.abs()).fold(0.0, f64::max),
-            final_slip_m: series.string_slip_m.last().copied().unwrap_or(0.0),
-            max_jaw_sinking_m: series.jaw_sinking_m.iter().copied().fold(0.0, f64::max),
-        }),
-        string: None,
-        head: HeadSummary::of(model, series, model.drive_end_s()),
-        sign_off: None,
-    })
 }
