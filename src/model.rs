@@ -161,7 +161,7 @@ pub struct Drive {
     /// An input shaper to tune to the arm's modes when the model is compiled
     /// ([`crate::tuning::tuned`]): `motion` is then the unshaped move, which the compiled model
     /// replaces by the shaped one (within the same duration).
-    pub shaper_to_tune: Option<Shaper>,
+    pub untuned_shaper: Option<Shaper>,
 }
 
 /// A mode a drive's input shaper was tuned to, found by [`crate::tuning`].

@@ -348,8 +348,8 @@ impl Scenario {
         Self::from_spec_and_robot_sharing(path, spec, robot, &Arc::new(Compiler::new()))
     }
 
-    /// [`Scenario::from_spec_and_robot`], compiling through `compiler`, which the scenario keeps:
-    /// the scenarios of a sweep share what their compiles derive.
+    /// [`Scenario::from_spec_and_robot`], keeping `compiler` for its compile
+    /// ([`Scenario::compile`]): the scenarios of a sweep share what their compiles derive.
     pub fn from_spec_and_robot_sharing(
         path: &Path,
         spec: ScenarioSpec,
@@ -395,7 +395,7 @@ impl Scenario {
             name: spec.name.clone(),
             robot,
             payload,
-            drive: Drive { motion, actuator, shaper_tuning: Vec::new(), shaper_to_tune: None },
+            drive: Drive { motion, actuator, shaper_tuning: Vec::new(), untuned_shaper: None },
             dampeners: dampeners?,
             structures,
             contact: spec.contact,
@@ -408,7 +408,12 @@ impl Scenario {
             checks,
         };
         if let Some(request) = spec.drive.shaping() {
-            (model.drive.motion, model.drive.shaper_to_tune) = check.shaped(&spec.drive, request, &model)?;
+            match request.frequencies_hz {
+                Some(given) => {
+                    model.drive.motion = check.shaped(&spec.drive, (given, request.damping_ratios), &model)?;
+                }
+                None => model.drive.untuned_shaper = Some(request.shaper),
+            }
         }
         check.model(&model)?;
         check.structures_clear(&model)?;

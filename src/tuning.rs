@@ -74,13 +74,13 @@ pub fn shaper_modes(model: &Model, compiler: &Compiler) -> Result<Vec<TunedMode>
 pub enum TuningError {
     /// The arm cannot be built or linearised at the end of the drive's path.
     #[error("the arm's modes at the end of the path cannot be computed ({0}): set drive.shaper_hz")]
-    Modes(#[source] ArmError),
+    Modes(ArmError),
     /// The linearised arm does not oscillate.
     #[error("the arm with its drive has no oscillating mode at the end of the path: set drive.shaper_hz")]
     NoOscillatingMode,
     /// The shaped move cannot be built in the drive's duration.
-    #[error("{0}")]
-    Drive(#[source] DriveError),
+    #[error("{0}{note}", note = .0.in_degrees_note())]
+    Drive(DriveError),
 }
 
 impl TuningError {
@@ -88,21 +88,19 @@ impl TuningError {
     pub fn key(&self) -> String {
         match self {
             TuningError::Modes(_) | TuningError::NoOscillatingMode => "drive.shaper".into(),
-            TuningError::Drive(DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) => {
-                format!("drive.{}", name.replace("_rad", "_deg"))
-            }
+            TuningError::Drive(error) => error.scenario_key(),
         }
     }
 }
 
-/// `model` with the shaper its drive asks to tune ([`crate::model::Drive::shaper_to_tune`])
+/// `model` with the shaper its drive asks to tune ([`crate::model::Drive::untuned_shaper`])
 /// tuned to the modes [`shaper_modes`] finds and its motion shaped within the same duration;
 /// `model` itself if it asks for none.
 ///
 /// # Errors
 /// [`TuningError`].
 pub fn tuned<'a>(model: &'a Model, compiler: &Compiler) -> Result<Cow<'a, Model>, TuningError> {
-    let Some(shaper) = model.drive.shaper_to_tune else { return Ok(Cow::Borrowed(model)) };
+    let Some(shaper) = model.drive.untuned_shaper else { return Ok(Cow::Borrowed(model)) };
     let found = shaper_modes(model, compiler).map_err(TuningError::Modes)?;
     if found.is_empty() {
         return Err(TuningError::NoOscillatingMode);
@@ -112,7 +110,7 @@ pub fn tuned<'a>(model: &'a Model, compiler: &Compiler) -> Result<Cow<'a, Model>
     let mut tuned = model.clone();
     tuned.drive.motion = model.drive.motion.shaped_within(shaper, &modes).map_err(TuningError::Drive)?;
     tuned.drive.shaper_tuning = found;
-    tuned.drive.shaper_to_tune = None;
+    tuned.drive.untuned_shaper = None;
     Ok(Cow::Owned(tuned))
 }
 

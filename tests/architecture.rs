@@ -251,6 +251,12 @@ fn reading_a_scenario_solves_no_eigenproblem() {
         "CompiledModel",
         "tuning::",
         "run::",
+        ".compile(",
+        "select::",
+        "string_fidelity",
+        "arm_model(",
+        "Scene::",
+        "modes_spinning",
     ];
     let compiling = ["scenario/compile.rs", "scenario/loop_advice.rs"];
     let mut read = 0;

@@ -362,7 +362,7 @@ fn a_tuned_shaper_that_speeds_the_move_past_the_joints_limit_is_refused_before_t
     std::fs::remove_file(&unshaped).ok();
     assert!(loaded.is_ok(), "{:?}", loaded.err());
     let m = refused_run("tuned-speed", seven("shaper = \"zvd\"\n"), same);
-    assert!(m.contains("drive.duration_s") && m.contains("velocity limit"), "{m}");
+    assert!(m.contains("drive.duration_s") && m.contains("velocity limit") && m.contains("zvd shaper tuned"), "{m}");
 }
 
 #[test]

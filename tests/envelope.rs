@@ -173,6 +173,20 @@ fn bad_spreads_name_the_argument_and_write_nothing() {
     assert!(e.contains("--samples 1") && e.contains("2 or more"), "{e}");
 }
 
+/// A spread end the scenario's compile refuses is refused as an end its reading refuses is: the
+/// hydraulic lift's closed loop grows at kp = 8 (docs/model-actuators.md: at 7 already), which
+/// only the loop check on the compiled arm finds.
+#[test]
+fn a_spread_reaching_a_growing_loop_is_refused_naming_its_end() {
+    let out = out_dir("growing-loop");
+    let mut asked = request(&out, &["actuator.controller.kp=uniform:4..8"], 4, None, Shard::ALL);
+    asked.scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenarios/hydraulic.toml");
+    asked.per = None;
+    let e = envelope(&asked, &|_: Progress| {}).unwrap_err().to_string();
+    assert!(e.contains("reaches 8") && e.contains("growing mode") && e.contains("actuator.controller.kp"), "{e}");
+    assert!(!out.join("plan.json").exists() && !out.join("cases").exists(), "something was written");
+}
+
 /// A design's limit on a figure the summary does not have fails before any search, naming it.
 #[test]
 fn a_design_limit_on_an_unknown_figure_names_it() {

@@ -304,7 +304,9 @@ fn the_pinned_tuning_reproduces_the_modes_found() {
     }
     let pinned = Scenario::from_spec(&path, pipearm::sweep::plan::spec_of(&path, document.clone()).unwrap()).unwrap();
     // The modes are found when the scenario is compiled; given, they shape it as it is read.
-    assert!(found.model.drive.motion.shaper_modes().is_empty() && found.model.drive.shaper_to_tune.is_some());
+    assert!(found.model.drive.motion.shaper_modes().is_empty() && found.model.drive.untuned_shaper.is_some());
+    let untuned = pipearm::scene::Scene::new(&found.model).err().map(|e| e.to_string()).unwrap_or_default();
+    assert!(untuned.contains("tuned to the arm's modes when the model is compiled"), "{untuned}");
     let tuned = found.tuned().unwrap();
     let (a, b) = (&tuned.drive.motion, &pinned.model.drive.motion);
     assert_eq!(a.shaper_modes(), b.shaper_modes());

@@ -22,7 +22,7 @@ use crate::envelope::dist::Spread;
 use crate::envelope::sensitivity::quantile;
 use crate::envelope::{EnvelopeError, cases::check_spreads};
 use crate::robot::Robot;
-use crate::run::{RunOptions, run_compiled};
+use crate::run::{RunOptions, run_reusing};
 use crate::scenario::{Scenario, ScenarioError};
 use crate::sweep::plan::{base_document, get_number, not_a_number, set_key, spec_of};
 use crate::sweep::row::Row;
@@ -213,8 +213,9 @@ impl Evaluator {
 
     /// Runs the draws at `x`; `Err` with why the candidate's scenario is not valid.
     fn runs(&self, x: &[f64]) -> Result<Runs, String> {
-        // Built on the workers too: a scenario's checks (its beam and path) and its compile (its
-        // modes) cost about as much as a short run. The draws' compiles share one compiler.
+        // Built on the workers too: a scenario's checks (its beam and path, and its compile's
+        // where it has any: an actuator's loop) cost about as much as a short run. The draws'
+        // checks and runs share one compiler.
         let compiler = std::sync::Arc::new(Compiler::new());
         let scenarios: Vec<Scenario> = self.pool.install(|| {
             self.draws
@@ -232,6 +233,7 @@ impl Evaluator {
                     }
                     let spec = spec_of(&self.path, document).map_err(|e| e.to_string())?;
                     Scenario::from_spec_and_robot_sharing(&self.path, spec, self.robot.clone(), &compiler)
+                        .and_then(|scenario| scenario.check_compiled().map(|()| scenario))
                         .map_err(|e| e.to_string())
                 })
                 .collect::<Result<_, String>>()
@@ -240,8 +242,7 @@ impl Evaluator {
             scenarios
                 .par_iter()
                 .map(|s| {
-                    let compiled = s.compile(None).ok()?;
-                    let summary = run_compiled(&compiled, &RunOptions::default()).0.ok()?;
+                    let (summary, _) = run_reusing(&s.model, &RunOptions::default(), &compiler).ok()?;
                     Row::read(serde_json::to_string(&summary).expect("a summary serialises"), &["impacts"]).ok()
                 })
                 .collect()

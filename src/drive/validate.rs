@@ -32,6 +32,25 @@ pub enum DriveError {
     },
 }
 
+impl DriveError {
+    /// The offending parameter's or samples' name (SI: `_rad` for angles).
+    pub fn name(&self) -> &'static str {
+        let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = self;
+        name
+    }
+
+    /// Its key as a scenario's `[drive]` spells it (`_deg` for `_rad`).
+    pub fn scenario_key(&self) -> String {
+        format!("drive.{}", self.name().replace("_rad", "_deg"))
+    }
+
+    /// What a scenario's error adds to it: a note that the values are in radians where its key
+    /// is in degrees.
+    pub fn in_degrees_note(&self) -> &'static str {
+        if self.name().contains("_rad") { " (values in radians)" } else { "" }
+    }
+}
+
 /// A validated point-to-point move.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Move {

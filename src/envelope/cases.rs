@@ -204,7 +204,9 @@ fn check_support(path: &Path, document: &toml::Value, spread: &Spread) -> Result
         let mut probe = document.clone();
         set_key(&mut probe, &spread.key, toml::Value::Float(value))
             .map_err(|message| EnvelopeError::Spread { spread: spread.to_string(), message })?;
-        let checked = spec_of(path, probe).and_then(|spec| Scenario::from_spec(path, spec));
+        let checked = spec_of(path, probe)
+            .and_then(|spec| Scenario::from_spec(path, spec))
+            .and_then(|scenario| scenario.check_compiled());
         if let Err(error) = checked {
             let message = if end.is_finite() {
                 format!("the distribution reaches {end}, which the scenario does not accept: {error}")

@@ -23,7 +23,7 @@ use thiserror::Error;
 
 use crate::scenario::ScenarioError;
 use crate::sweep::row::Row;
-use crate::sweep::{Plan, Shard, SweepError, Vary, compile_cases, prepare, read_results, run_cases};
+use crate::sweep::{Plan, Shard, SweepError, Vary, check_compiled, prepare, read_results, run_cases};
 use cases::{MethodChoice, Sampling, check_spreads};
 use dist::{Spread, SpreadError};
 use stats::{GroupEnvelope, group_envelope};
@@ -141,7 +141,7 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
     let vary = sampling.vary(&request.spreads);
     let rows = sampling.case_rows(&request.spreads, &pinned_keys(&request.scenario, &request.spreads)?);
     let (plan, scenarios) = pool.install(|| Plan::build_cases(&request.scenario, vary, rows))?;
-    let compiled = compile_cases(&plan, &scenarios, request.shard, &pool)?;
+    check_compiled(&plan, &scenarios, request.shard, &pool)?;
     let work = prepare(&plan, &request.out, request.shard)?;
     let json = serde_json::to_string_pretty(&sampling).expect("a sampling serialises") + "\n";
     crate::sweep::write_atomic(
@@ -150,7 +150,7 @@ pub fn envelope(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Resu
         &format!("shard{}", request.shard.index),
     )?;
     progress(Progress::Start { todo: work.todo.len() });
-    run_cases(&plan, &compiled, &request.out, &work.todo, &pool, &|case| {
+    run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| {
         progress(Progress::Done { index: case.index })
     })?;
     let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };

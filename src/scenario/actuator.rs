@@ -338,7 +338,7 @@ mod tests {
                      controller = { kp = 5, rate_hz = 250 }\n";
         let mut spec = default_with(table);
         // The hydraulic scenes' step: with the five modes `auto` keeps on a cylinder, RK4 at a
-        // longer step would pass the limit the drive's fastest pole sets (a checked error).
+        // longer step would pass the limit the drive's fastest pole sets (an error of its compile).
         spec.time.step_s = 0.0015;
         let canonical = toml::to_string(&spec).unwrap();
         assert_eq!(toml::from_str::<ScenarioSpec>(&canonical).unwrap(), spec, "{canonical}");

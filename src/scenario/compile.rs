@@ -38,12 +38,29 @@ impl Scenario {
     pub fn compile(&self, fidelity: Option<Fidelity>) -> Result<CompiledModel<'_>, ScenarioError> {
         let compiled = CompiledModel::new(&self.model, fidelity, &self.compiler).map_err(|e| self.compile_error(e))?;
         let check = self.check();
-        if self.model.drive.shaper_to_tune.is_some() {
-            check.drive_limits(&compiled.model)?;
-            check.actuator_in_scene(&compiled.model)?;
+        if self.model.drive.untuned_shaper.is_some() {
+            let tuned = &compiled.model;
+            let limits = check.drive_limits(tuned).and_then(|()| check.actuator_in_scene(tuned));
+            limits.map_err(|e| shaped_by_tuning(e, tuned))?;
         }
         check.closed_loop_on_path(&compiled)?;
         Ok(compiled)
+    }
+
+    /// Whether its compile checks anything its reading could not (a closed loop, a shaper's
+    /// move tuned to the arm's modes): a sweep compiles such cases before it writes any.
+    pub fn compile_checks(&self) -> bool {
+        self.model.drive.untuned_shaper.is_some() || self.model.drive.actuator.controller().is_some()
+    }
+
+    /// The compile's checks ([`Self::compile`]) where it has any ([`Self::compile_checks`]),
+    /// the compiled model dropped: what a sweep, an envelope or a design runs on every case
+    /// before any runs.
+    ///
+    /// # Errors
+    /// As [`Self::compile`].
+    pub fn check_compiled(&self) -> Result<(), ScenarioError> {
+        if self.compile_checks() { self.compile(None).map(|_| ()) } else { Ok(()) }
     }
 
     /// The scenario's model with its shaper tuned ([`crate::tuning::tuned`]), without the rest of
@@ -62,6 +79,21 @@ impl Scenario {
     fn compile_error(&self, error: SceneError) -> ScenarioError {
         ScenarioError::Compile { path: self.path.clone(), error }
     }
+}
+
+/// `error`, from a drive limit checked on the move `tuned`'s shaper shaped, saying so: the file's
+/// own move passes them, and the shaper is what sped it up.
+fn shaped_by_tuning(error: ScenarioError, tuned: &Model) -> ScenarioError {
+    let ScenarioError::Invalid { path, key, message } = error else { return error };
+    let modes: Vec<String> =
+        tuned.drive.motion.shaper_modes().iter().map(|m| format!("{:.3}", m.frequency_hz)).collect();
+    let shaper = tuned.drive.motion.shaper().map_or("", |s| s.name());
+    let message = format!(
+        "{message}; with the {shaper} shaper tuned to the arm's modes at [{}] Hz, the base move lasts duration_s minus \
+         the shaper's length",
+        modes.join(", ")
+    );
+    ScenarioError::Invalid { path, key, message }
 }
 
 impl Check<'_> {

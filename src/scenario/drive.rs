@@ -161,22 +161,17 @@ impl Check<'_> {
         }
     }
 
-    /// The drive's motion with the shaper `request` asks for: shaped to the modes `shaper_hz`
-    /// gives, or, where it gives none, unshaped with the shaper to tune when the model is
-    /// compiled (the arm's modes: [`crate::tuning::tuned`]).
+    /// The drive's motion shaped to the modes `frequencies_hz` and `damping_ratios` give (from
+    /// `shaper_hz` and `shaper_damping_ratio`; without them the shaper is tuned when the model is
+    /// compiled, [`crate::tuning::tuned`]).
     pub(super) fn shaped(
         &self,
         drive: &DriveSpec,
-        request: ShaperRequest<'_>,
+        (frequencies_hz, damping_ratios): (&[f64], Option<&[f64]>),
         model: &Model,
-    ) -> Result<(MotionProfile, Option<Shaper>), ScenarioError> {
-        match request.frequencies_hz {
-            Some(frequencies) => {
-                let modes = self.given_modes(frequencies, request.damping_ratios, model)?;
-                Ok((drive.shaped_motion(&modes).map_err(|e| drive_error(self.path, e))?, None))
-            }
-            None => Ok((model.drive.motion.clone(), Some(request.shaper))),
-        }
+    ) -> Result<MotionProfile, ScenarioError> {
+        let modes = self.given_modes(frequencies_hz, damping_ratios, model)?;
+        drive.shaped_motion(&modes).map_err(|e| drive_error(self.path, e))
     }
 
     /// The modes `shaper_hz` and `shaper_damping_ratio` give.
@@ -293,7 +288,7 @@ impl DriveSpec {
     /// table is read relative to its scenario file ([`Scenario::load`],
     /// [`MotionProfile::from_csv`]); here it is an error.
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
-        self.profile(None)
+        self.profile()
     }
 
     /// The drive with its `shaper` tuned to every one of `modes`: the base move over
@@ -310,13 +305,12 @@ impl DriveSpec {
         }
     }
 
-    /// The unshaped profile, over `duration` (s) instead of the drive's `duration_s` if given.
-    fn profile(&self, duration: Option<f64>) -> Result<MotionProfile, DriveError> {
+    /// The unshaped profile.
+    fn profile(&self) -> Result<MotionProfile, DriveError> {
         let r = f64::to_radians;
-        let over = |duration_s: f64| duration.unwrap_or(duration_s);
         match *self {
             DriveSpec::Uniform { start_deg, end_deg, duration_s, .. } => {
-                MotionProfile::uniform(r(start_deg), r(end_deg), over(duration_s))
+                MotionProfile::uniform(r(start_deg), r(end_deg), duration_s)
             }
             DriveSpec::Trapezoidal { start_deg, end_deg, duration_s, accel_deg_s2, ramp_fraction, .. } => {
                 let limit = match (accel_deg_s2, ramp_fraction) {
@@ -324,7 +318,7 @@ impl DriveSpec {
                     (None, Some(f)) => TrapezoidLimit::RampFraction(f),
                     _ => return Err(either("accel_deg_s2 | ramp_fraction")),
                 };
-                MotionProfile::trapezoidal(r(start_deg), r(end_deg), over(duration_s), limit)
+                MotionProfile::trapezoidal(r(start_deg), r(end_deg), duration_s, limit)
             }
             DriveSpec::SCurve {
                 start_deg,
@@ -341,7 +335,7 @@ impl DriveSpec {
                     (None, None, Some(f), Some(jf)) => SCurveLimit::Fractions { ramp_fraction: f, jerk_fraction: jf },
                     _ => return Err(either("accel_deg_s2 + jerk_deg_s3 | ramp_fraction + jerk_fraction")),
                 };
-                MotionProfile::s_curve(r(start_deg), r(end_deg), over(duration_s), limit)
+                MotionProfile::s_curve(r(start_deg), r(end_deg), duration_s, limit)
             }
             DriveSpec::Hold { angle_deg } => Ok(MotionProfile::hold(r(angle_deg))),
             DriveSpec::Table { .. } => Err(DriveError::InvalidParameter {
@@ -423,8 +417,6 @@ impl Check<'_> {
 }
 
 fn drive_error(path: &Path, e: DriveError) -> ScenarioError {
-    let (DriveError::InvalidParameter { name, .. } | DriveError::InvalidSample { name, .. }) = &e;
-    let key = name.replace("_rad", "_deg");
-    let message = if key == *name { e.to_string() } else { format!("{e} (values in radians)") };
-    ScenarioError::Invalid { path: path.into(), key: format!("drive.{key}"), message }
+    let message = format!("{e}{}", e.in_degrees_note());
+    ScenarioError::Invalid { path: path.into(), key: e.scenario_key(), message }
 }

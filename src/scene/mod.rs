@@ -92,6 +92,13 @@ pub enum SceneError {
          modelled yet (lock its hinge, kind=\"locked\", or keep it clear)"
     )]
     ContactOnTiltingHead(String),
+    /// A model whose drive's shaper is still to be tuned to the arm's modes: its scene is built
+    /// from its compiled model, which tunes it.
+    #[error(
+        "the drive's shaper is tuned to the arm's modes when the model is compiled: build the scene from \
+         run::CompiledModel's model"
+    )]
+    UntunedShaper,
     /// The run's energy grew without a source, or its values stopped being finite.
     #[error("the run diverged at t = {t_s:.4} s: {what}. Advice: {advice}")]
     Diverged { t_s: f64, what: String, advice: String },
@@ -116,6 +123,9 @@ impl Scene {
 
     /// Builds the scene of a model around an arm model already reduced for it.
     pub fn with_arm(model: &Model, arm_model: impl Into<std::sync::Arc<ArmModel>>) -> Result<Self, SceneError> {
+        if model.drive.untuned_shaper.is_some() {
+            return Err(SceneError::UntunedShaper);
+        }
         let arm = ArmSimulation::new(arm_model, model.hub_drive(), model.integrator)?;
         let friction = model.payload.string().and_then(|held| held.friction_clamp().map(|_| held));
         if let Some(held) = friction.filter(|h| h.grips.len() > 1) {

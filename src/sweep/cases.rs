@@ -13,7 +13,8 @@ use serde::Serialize;
 use super::plan::{Case, Plan};
 use super::shard::Shard;
 use super::{SweepError, io_error, write_atomic};
-use crate::run::{CompiledModel, RunOptions, RunSummary, run_compiled};
+use crate::compile::Compiler;
+use crate::run::{RunOptions, RunSummary, run_reusing};
 use crate::scenario::Scenario;
 use crate::scene::SceneError;
 
@@ -89,48 +90,55 @@ fn remove_stale(plan: &Plan, cases: &Path, shard: Shard) -> Result<(), SweepErro
     Ok(())
 }
 
-/// Compiles `shard`'s cases of `plan` (their `scenarios` by index; `None` for the other shards')
-/// on the workers of `pool`, each through the compiler the cases share
-/// ([`Scenario::compile`]): a case the compile refuses fails the sweep before any case is
-/// written.
-pub fn compile_cases<'a>(
+/// Runs the compile's checks ([`Scenario::check_compiled`]) on `shard`'s cases of `plan` (their
+/// `scenarios` by index) on the workers of `pool`: a case its compile refuses fails the sweep
+/// before any case is written, the lowest such case named. Nothing compiled is kept (the runs
+/// take what their compiler kept).
+pub fn check_compiled(
     plan: &Plan,
-    scenarios: &'a [Scenario],
+    scenarios: &[Scenario],
     shard: Shard,
     pool: &rayon::ThreadPool,
-) -> Result<Vec<Option<CompiledModel<'a>>>, SweepError> {
+) -> Result<(), SweepError> {
     use rayon::prelude::*;
     let keys = plan.keys();
-    let compile = |(scenario, case): (&'a Scenario, &Case)| {
-        if !shard.contains(case.index) {
-            return Ok(None);
-        }
-        let error =
-            |error| SweepError::Case { index: case.index, values: case.describe(&keys), error: Box::new(error) };
-        scenario.compile(None).map(Some).map_err(error)
-    };
-    pool.install(|| scenarios.par_iter().zip(&plan.cases).map(compile).collect())
+    let checked: Vec<Result<(), SweepError>> = pool.install(|| {
+        scenarios
+            .par_iter()
+            .zip(&plan.cases)
+            .filter(|(_, case)| shard.contains(case.index))
+            .map(|(scenario, case)| {
+                scenario.check_compiled().map_err(|error| SweepError::Case {
+                    index: case.index,
+                    values: case.describe(&keys),
+                    error: Box::new(error),
+                })
+            })
+            .collect()
+    });
+    checked.into_iter().collect()
 }
 
-/// Runs the cases `todo` of `plan` (their `compiled` models by index, every one compiled) on the workers of `pool`,
+/// Runs the cases `todo` of `plan` (their `scenarios` by index) on the workers of `pool`,
 /// writing each case file as it finishes and calling `done` after it. The
 /// longest cases go first and each worker takes the next as it frees up, so the workers finish
 /// together to within one of the shortest cases. Stops at the first failure and returns it.
 pub fn run_cases(
     plan: &Plan,
-    compiled: &[Option<CompiledModel>],
+    scenarios: &[Scenario],
     dir: &Path,
     todo: &[usize],
     pool: &rayon::ThreadPool,
     done: &(dyn Fn(&Case) + Sync),
 ) -> Result<(), SweepError> {
-    let queue = longest_first(todo, compiled);
+    let queue = longest_first(todo, scenarios);
     let next = AtomicUsize::new(0);
     let failure: Mutex<Option<SweepError>> = Mutex::new(None);
+    // The cases vary a few keys: most share their beam and reduced arm, compiled once through
+    // the compiler their checks shared (`Scenario::compiler`).
     pool.broadcast(|_| {
         while let Some(&i) = queue.get(next.fetch_add(1, Ordering::Relaxed)) {
-            let compiled = compiled[i].as_ref().expect("a shard's cases are compiled");
-            match run_case(plan, &plan.cases[i], compiled, dir) {
+            match run_case(plan, &plan.cases[i], &scenarios[i], dir, &scenarios[i].compiler) {
                 Ok(()) => done(&plan.cases[i]),
                 Err(e) => {
                     failure.lock().expect("no worker panics holding it").get_or_insert(e);
@@ -143,18 +151,18 @@ pub fn run_cases(
 }
 
 /// `todo` ordered by the steps each case takes (its cost), most first; ties by index.
-fn longest_first(todo: &[usize], compiled: &[Option<CompiledModel>]) -> Vec<usize> {
-    let steps = |i: usize| compiled[i].as_ref().map_or(0.0, |c| c.model.duration_s() / c.model.time.step_s);
+fn longest_first(todo: &[usize], scenarios: &[Scenario]) -> Vec<usize> {
+    let steps = |i: usize| scenarios[i].model.duration_s() / scenarios[i].model.time.step_s;
     let mut queue = todo.to_vec();
     queue.sort_by(|&a, &b| steps(b).total_cmp(&steps(a)).then(a.cmp(&b)));
     queue
 }
 
-fn run_case(plan: &Plan, case: &Case, compiled: &CompiledModel, dir: &Path) -> Result<(), SweepError> {
+fn run_case(plan: &Plan, case: &Case, scenario: &Scenario, dir: &Path, compiler: &Compiler) -> Result<(), SweepError> {
     let file =
         |summary, diverged| CaseFile { index: case.index, hash: &case.hash, values: &case.values, summary, diverged };
-    let json = match run_compiled(compiled, &RunOptions::default()).0 {
-        Ok(summary) => serde_json::to_string_pretty(&file(Some(&summary), None)),
+    let json = match run_reusing(&scenario.model, &RunOptions::default(), compiler) {
+        Ok((summary, _)) => serde_json::to_string_pretty(&file(Some(&summary), None)),
         Err(SceneError::Diverged { t_s, what, advice }) => {
             serde_json::to_string_pretty(&file(None, Some(Diverged { t_s, what: &what, advice: &advice })))
         }

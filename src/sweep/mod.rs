@@ -25,7 +25,7 @@ use thiserror::Error;
 use crate::scenario::ScenarioError;
 use crate::scene::SceneError;
 
-pub use cases::{Work, compile_cases, prepare, run_cases};
+pub use cases::{Work, check_compiled, prepare, run_cases};
 pub use plan::{Case, Plan};
 pub use shard::Shard;
 pub use table::{Merged, merge, read_results};
@@ -112,17 +112,18 @@ pub enum Progress {
     Done { index: usize },
 }
 
-/// Plans and checks every case and compiles this shard's (writing nothing if one fails), runs
-/// this shard's cases that are not current, and merges if the shard is the whole sweep.
+/// Plans and checks every case, runs the compile's checks on this shard's (writing nothing if
+/// one fails), runs this shard's cases that are not current, and merges if the shard is the
+/// whole sweep.
 pub fn sweep(request: &Request, progress: &(dyn Fn(Progress) + Sync)) -> Result<Report, SweepError> {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(request.threads.unwrap_or(0)).build()?;
     let vary =
         request.vary.iter().map(|v| pipes::expand(&request.scenario, v.clone())).collect::<Result<Vec<_>, _>>()?;
     let (plan, scenarios) = pool.install(|| Plan::build(&request.scenario, vary))?;
-    let compiled = compile_cases(&plan, &scenarios, request.shard, &pool)?;
+    check_compiled(&plan, &scenarios, request.shard, &pool)?;
     let work = prepare(&plan, &request.out, request.shard)?;
     progress(Progress::Start { todo: work.todo.len() });
-    run_cases(&plan, &compiled, &request.out, &work.todo, &pool, &|case| {
+    run_cases(&plan, &scenarios, &request.out, &work.todo, &pool, &|case| {
         progress(Progress::Done { index: case.index })
     })?;
     let merged = if request.shard == Shard::ALL { Some(pool.install(|| merge(&request.out))?) } else { None };
