@@ -34,4 +34,8 @@ pub struct ExpectedError {
     /// The fewest modes the scene's band (and an actuator's coupled frequencies) need, the floor
     /// the budget adds to; 0 for the string's estimate, which has no floor of its own.
     pub floor_modes: usize,
+    /// The expected relative error of the residual vibration's amplitude, where the estimate
+    /// measures it (a linear run through the drive); stated, not held to the budget.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub residual_fraction: Option<f64>,
 }

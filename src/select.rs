@@ -111,16 +111,12 @@ pub fn choose(model: &Model, beam: &BeamModel, modes: &ModalBasis) -> Result<Cho
         ));
     }
     let floor = n.max(1);
-    let (chosen, fraction, basis) = if linear_run::applies(model) {
+    let (chosen, expected) = if linear_run::applies(model) {
         by_linear_run(model, beam, modes, floor, &mut reasons)
     } else {
         by_bound(model, beam, modes, floor, &mut reasons)?
     };
-    Ok(Choice {
-        fidelity: Fidelity::Modal { modes: chosen },
-        reason: reasons.join("; "),
-        expected: Some(ExpectedError { fraction, basis, floor_modes: floor }),
-    })
+    Ok(Choice { fidelity: Fidelity::Modal { modes: chosen }, reason: reasons.join("; "), expected: Some(expected) })
 }
 
 /// The modes from `floor` the budget needs, measured on a linear run through the drive
@@ -131,9 +127,10 @@ fn by_linear_run(
     modes: &ModalBasis,
     floor: usize,
     reasons: &mut Vec<String>,
-) -> (usize, f64, String) {
+) -> (usize, ExpectedError) {
     let run = linear_run::LinearRun::new(model, beam, modes);
-    let (chosen, errors) = linear_run::modes_within(&run, floor, model.tolerance);
+    let (chosen, judged) = linear_run::modes_within(&run, floor, model.tolerance);
+    let errors: Vec<f64> = judged.iter().map(|j| j.peak).collect();
     let fraction = errors.last().copied().unwrap_or(0.0);
     let more = linear_run::JUDGED_BEYOND;
     let verdict = against_budget(fraction, model.tolerance, "the most modes a linear run can judge");
@@ -152,7 +149,8 @@ fn by_linear_run(
         )
     });
     let basis = format!("peak tip deflection: against {more} modes more, run linearly through the drive");
-    (chosen, fraction, basis)
+    let residual_fraction = judged.last().and_then(|j| j.residual);
+    (chosen, ExpectedError { fraction, basis, floor_modes: floor, residual_fraction })
 }
 
 /// The modes from `floor` the budget needs by the modal truncation bound ([`TruncationBound`]):
@@ -163,7 +161,7 @@ fn by_bound(
     modes: &ModalBasis,
     floor: usize,
     reasons: &mut Vec<String>,
-) -> Result<(usize, f64, String), BeamError> {
+) -> Result<(usize, ExpectedError), BeamError> {
     let bound = TruncationBound::new(model, beam, modes)?;
     let chosen = bound.modes_within(floor, modes.len(), model.tolerance);
     let (fraction, quantity) = bound.error(chosen);
@@ -178,7 +176,7 @@ fn by_bound(
         )
     });
     let basis = format!("{quantity}: the modes left out, answering quasi-statically (modal truncation bound)");
-    Ok((chosen, fraction, basis))
+    Ok((chosen, ExpectedError { fraction, basis, floor_modes: floor, residual_fraction: None }))
 }
 
 /// How an expected error `fraction` stands against the budget `tolerance`: "within" it, or, where
@@ -342,6 +340,7 @@ pub fn string_fidelity_and_beam(
                 first frequency (string truncation estimate)"
             .into(),
         floor_modes: 0,
+        residual_fraction: None,
     });
     if k == 0 {
         return Ok((Choice { fidelity: Fidelity::Rigid, reason: format!("{why}: rigid"), expected }, None));

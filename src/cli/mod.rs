@@ -12,4 +12,5 @@ pub mod pipes;
 pub mod project;
 pub mod seed;
 pub mod sign_off;
+pub mod summary;
 pub mod sweep;

@@ -31,6 +31,11 @@ pub const REFERENCE_MODES: usize = 12;
 /// tip by round-off only: the floor stands (as for [`super::TruncationBound`]).
 const NEGLIGIBLE_SHARE: f64 = 1e-3;
 
+/// A residual vibration below this share of the run's peak tip deflection is within the linear
+/// run's own first-order error (it matches fe's peak to about 1e-4 of it): its error is not
+/// estimated (a lowering that settles by a hundredth of a millimetre on a 18 mm peak).
+const RESIDUAL_SHARE: f64 = 5e-3;
+
 /// How many modes beyond modal(n) the run that judges it keeps: four more change the shipped
 /// spin-ups' and lowering's peak tip deflection by under 0.01 % (docs/fidelity.md), a hundredth
 /// of the default budget.
@@ -112,17 +117,23 @@ impl<'a> LinearRun<'a> {
         self.omegas.len()
     }
 
-    /// What modal(n) misses of the peak tip deflection: its run's against that with
-    /// [`JUDGED_BEYOND`] modes more, relative to the latter; `None` where that peak is below
+    /// What modal(n) misses of the peak tip deflection and the residual vibration: its run's
+    /// against that with [`JUDGED_BEYOND`] modes more ([`Judged`]); `None` where that peak is below
     /// [`NEGLIGIBLE_SHARE`] of the arm's sag laid level (an arm held upright, gravity along it:
     /// nothing bends the tip, and its share would be round-off).
-    pub fn error(&self, n: usize) -> Option<f64> {
-        let reference = self.peak_tip_m(n + JUDGED_BEYOND);
-        (reference > NEGLIGIBLE_SHARE * self.level_sag_m).then(|| (self.peak_tip_m(n) - reference).abs() / reference)
+    pub fn error(&self, n: usize) -> Option<Judged> {
+        let (reference, run) = (self.tip_m(n + JUDGED_BEYOND), self.tip_m(n));
+        let relative = |a: f64, r: f64| (a - r).abs() / r;
+        (reference.peak_m > NEGLIGIBLE_SHARE * self.level_sag_m).then(|| Judged {
+            peak: relative(run.peak_m, reference.peak_m),
+            residual: (reference.residual_m > RESIDUAL_SHARE * reference.peak_m)
+                .then(|| relative(run.residual_m, reference.residual_m)),
+        })
     }
 
-    /// modal(n)'s largest |tip deflection| over the run (drive and settling), m.
-    fn peak_tip_m(&self, n: usize) -> f64 {
+    /// modal(n)'s tip deflection over the run, m: its largest |value| (drive and settling), and
+    /// the residual vibration after the drive (half its peak-to-peak, as the summary reads it).
+    fn tip_m(&self, n: usize) -> TipRun {
         let n = n.clamp(1, self.most_modes());
         let h = self.model.time.step_s;
         let (w, c, tip) = (&self.omegas[..n], &self.rates[..n], &self.tip.as_slice()[..n]);
@@ -146,9 +157,12 @@ impl<'a> LinearRun<'a> {
         let (mut v, mut acc, mut rhs, mut z) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(a, b)| a * b).sum::<f64>();
         let mut peak = dot(tip, &x).abs();
+        // The steps from the drive's end on (the summary's residual, `analysis::residual_of_run`).
+        let settling = (self.model.drive_end_s() / h - 1e-9).ceil().max(1.0) as usize;
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
         let inverse_a: Vec<f64> = a.iter().map(|a| 1.0 / a).collect();
         let (half_h, quarter_h2) = (0.5 * h, 0.25 * h * h);
-        for &at in &self.drive[1..] {
+        for (k, &at) in self.drive.iter().enumerate().skip(1) {
             let spin2 = at[3];
             // The predicted displacement, in x.
             for i in 0..n {
@@ -168,24 +182,44 @@ impl<'a> LinearRun<'a> {
                 v[i] += half_h * (acc[i] + next);
                 acc[i] = next;
             }
-            peak = peak.max(dot(tip, &x).abs());
+            let deflection = dot(tip, &x);
+            peak = peak.max(deflection.abs());
+            if k >= settling {
+                (low, high) = (low.min(deflection), high.max(deflection));
+            }
         }
-        peak
+        TipRun { peak_m: peak, residual_m: if high >= low { 0.5 * (high - low) } else { 0.0 } }
     }
+}
+
+/// A linear run's tip deflection (m): [`LinearRun::tip_m`].
+struct TipRun {
+    peak_m: f64,
+    residual_m: f64,
+}
+
+/// What modal(n) misses against [`JUDGED_BEYOND`] modes more, relative to the latter.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Judged {
+    /// Of the peak tip deflection, the budget's quantity.
+    pub peak: f64,
+    /// Of the residual vibration's amplitude (stated, not held to the budget); `None` where the
+    /// tip rings by less than [`RESIDUAL_SHARE`] of its peak.
+    pub residual: Option<f64>,
 }
 
 /// The fewest modes from `floor` (at most [`REFERENCE_MODES`] less [`JUDGED_BEYOND`]) whose
 /// [`LinearRun::error`] is within `tolerance`, and the error of each count run on the way, from
 /// `floor`; `floor` itself, with no error, where the arm has too few modes to judge it or nothing
 /// bends its tip.
-pub fn modes_within(run: &LinearRun, floor: usize, tolerance: f64) -> (usize, Vec<f64>) {
+pub fn modes_within(run: &LinearRun, floor: usize, tolerance: f64) -> (usize, Vec<Judged>) {
     let floor = floor.max(1);
     let last = run.most_modes().saturating_sub(JUDGED_BEYOND);
     let mut errors = Vec::new();
     for n in floor..=last {
         let Some(error) = run.error(n) else { return (floor, Vec::new()) };
         errors.push(error);
-        if error <= tolerance {
+        if error.peak <= tolerance {
             return (n, errors);
         }
     }
