@@ -26,7 +26,7 @@ pub use channels::{channels, measurable_channels};
 pub use compiled::CompiledModel;
 pub use readings::HeadSummary;
 use readings::{read_head, read_sensors, read_string};
-use summarize::{AsBuilt, RunCounts, summarize};
+use summarize::{AsBuilt, summarize};
 
 /// Time histories of a run, one entry per step (the initial state included).
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -440,8 +440,7 @@ fn simulate(compiled: &CompiledModel, options: &RunOptions, series: &mut Series)
     stress.iter_mut().for_each(|p| p.hand_over_rest(&mut series.stress));
     let summarized = stepped.and_then(|steps| {
         let wall_time_s = started.elapsed().as_secs_f64();
-        let run = RunCounts { steps, wall_time_s };
-        let mut summary = summarize(compiled, &built, series, &trackers, run)?;
+        let mut summary = summarize(compiled, &built, series, &trackers, steps, wall_time_s)?;
         (summary.model_reason, summary.model_expected_error) = (choice.reason.clone(), choice.expected.clone());
         if let Some(choice) = string_choice {
             if let Some(peaks) = scene.string.as_ref().filter(|_| series.string_peak_stress.is_empty()) {

@@ -44,18 +44,7 @@ impl MotionProfile {
     /// (`base`), no mode (`modes`), a frequency that is not finite and > 0 (`frequency_hz`), or a
     /// damping ratio outside `0 ≤ ζ < 1` (`damping_ratio`).
     pub fn shaped_for(base: MotionProfile, shaper: Shaper, modes: &[ShaperMode]) -> Result<Self, DriveError> {
-        if !matches!(base.kind, Kind::Uniform | Kind::Trapezoidal { .. } | Kind::SCurve { .. }) {
-            return Err(invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move"));
-        }
-        if modes.is_empty() {
-            return Err(invalid("modes", 0.0, "at least one mode to tune to"));
-        }
-        for mode in modes {
-            require_positive("frequency_hz", mode.frequency_hz)?;
-            if !(0.0..1.0).contains(&mode.damping_ratio) {
-                return Err(invalid("damping_ratio", mode.damping_ratio, "0 <= damping_ratio < 1"));
-            }
-        }
+        base.check_shapeable(modes)?;
         let impulses = shaper.impulses_for(modes);
         let duration_s = base.duration_s + impulses.last().map_or(0.0, |i| i.0);
         let segments = convolved_segments(&base, &impulses, duration_s);
@@ -82,12 +71,7 @@ impl MotionProfile {
     /// As [`Self::shaped_for`]; `duration_s` not longer than the shaper's length; the move's
     /// limits not reachable over the shortened duration.
     pub fn shaped_within(&self, shaper: Shaper, modes: &[ShaperMode]) -> Result<Self, DriveError> {
-        let valid = |m: &ShaperMode| {
-            m.frequency_hz.is_finite() && m.frequency_hz > 0.0 && (0.0..1.0).contains(&m.damping_ratio)
-        };
-        if modes.is_empty() || !modes.iter().all(valid) {
-            return Self::shaped_for(self.clone(), shaper, modes);
-        }
+        self.check_shapeable(modes)?;
         let length_s = shaper.length_for_s(modes);
         if self.duration_s <= length_s {
             let listed: Vec<String> = modes.iter().map(|m| format!("{:.4}", m.frequency_hz)).collect();
@@ -111,8 +95,26 @@ impl MotionProfile {
             Kind::Uniform => Self::uniform(start, end, duration_s),
             Kind::Trapezoidal { limit } => Self::trapezoidal(start, end, duration_s, *limit),
             Kind::SCurve { limit } => Self::s_curve(start, end, duration_s, *limit),
-            _ => Err(invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move")),
+            _ => Err(not_a_base()),
         }
+    }
+
+    /// This move may be shaped to `modes`: it is an unshaped uniform, trapezoidal or s-curve
+    /// move, and they are one or more, each with a frequency > 0 and a damping ratio in [0, 1).
+    fn check_shapeable(&self, modes: &[ShaperMode]) -> Result<(), DriveError> {
+        if !matches!(self.kind, Kind::Uniform | Kind::Trapezoidal { .. } | Kind::SCurve { .. }) {
+            return Err(not_a_base());
+        }
+        if modes.is_empty() {
+            return Err(invalid("modes", 0.0, "at least one mode to tune to"));
+        }
+        for mode in modes {
+            require_positive("frequency_hz", mode.frequency_hz)?;
+            if !(0.0..1.0).contains(&mode.damping_ratio) {
+                return Err(invalid("damping_ratio", mode.damping_ratio, "0 <= damping_ratio < 1"));
+            }
+        }
+        Ok(())
     }
 
     /// The shaper of a shaped profile, `None` for every other.
@@ -162,6 +164,11 @@ impl MotionProfile {
         merged.retain(|j| j.1.abs() > 1e-12 * scale);
         merged
     }
+}
+
+/// A shaper's base that is not an unshaped point-to-point move.
+fn not_a_base() -> DriveError {
+    invalid("base", f64::NAN, "an unshaped uniform, trapezoidal or s-curve move")
 }
 
 /// The shaped profile's constant-jerk segments over `[0, duration_s)`: one per interval between

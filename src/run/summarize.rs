@@ -23,18 +23,13 @@ impl AsBuilt {
     }
 }
 
-/// How long a run was, in steps and wall time (s).
-pub(super) struct RunCounts {
-    pub(super) steps: usize,
-    pub(super) wall_time_s: f64,
-}
-
 pub(super) fn summarize(
     compiled: &CompiledModel,
     built: &AsBuilt,
     series: &Series,
     trackers: &[ImpactTracker],
-    RunCounts { steps, wall_time_s }: RunCounts,
+    steps: usize,
+    wall_time_s: f64,
 ) -> Result<RunSummary, SceneError> {
     let (model, fastest_rad_s): (&Model, f64) = (&compiled.model, compiled.arm.fastest_rad_s);
     let arm = &compiled.arm.model;

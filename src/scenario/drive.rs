@@ -288,25 +288,6 @@ impl DriveSpec {
     /// table is read relative to its scenario file ([`Scenario::load`],
     /// [`MotionProfile::from_csv`]); here it is an error.
     pub fn motion(&self) -> Result<MotionProfile, DriveError> {
-        self.profile()
-    }
-
-    /// The drive with its `shaper` tuned to every one of `modes`: the base move over
-    /// `duration_s` minus the shaper's length, convolved with the shaper's impulses, so that the
-    /// whole lift still takes `duration_s`. Without a shaper, [`Self::motion`].
-    ///
-    /// # Errors
-    /// As [`Self::motion`]; `duration_s` not longer than the shaper's length; modes
-    /// [`MotionProfile::shaped_for`] refuses.
-    pub fn shaped_motion(&self, modes: &[ShaperMode]) -> Result<MotionProfile, DriveError> {
-        match self.shaping() {
-            Some(request) => self.motion()?.shaped_within(request.shaper, modes),
-            None => self.motion(),
-        }
-    }
-
-    /// The unshaped profile.
-    fn profile(&self) -> Result<MotionProfile, DriveError> {
         let r = f64::to_radians;
         match *self {
             DriveSpec::Uniform { start_deg, end_deg, duration_s, .. } => {
@@ -343,6 +324,20 @@ impl DriveSpec {
                 value: f64::NAN,
                 allowed: "a table read with its scenario (Scenario::load) or by MotionProfile::from_csv".into(),
             }),
+        }
+    }
+
+    /// The drive with its `shaper` tuned to every one of `modes`: the base move over
+    /// `duration_s` minus the shaper's length, convolved with the shaper's impulses, so that the
+    /// whole lift still takes `duration_s`. Without a shaper, [`Self::motion`].
+    ///
+    /// # Errors
+    /// As [`Self::motion`]; `duration_s` not longer than the shaper's length; modes
+    /// [`MotionProfile::shaped_for`] refuses.
+    pub fn shaped_motion(&self, modes: &[ShaperMode]) -> Result<MotionProfile, DriveError> {
+        match self.shaping() {
+            Some(request) => self.motion()?.shaped_within(request.shaper, modes),
+            None => self.motion(),
         }
     }
 }
